@@ -1,0 +1,1 @@
+//! scratchwave-cpu: see ARCHITECTURE.md. Filled in by its issue.

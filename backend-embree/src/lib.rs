@@ -1,0 +1,1 @@
+//! scratchwave-embree: see ARCHITECTURE.md. Filled in by its issue.

@@ -1,0 +1,1 @@
+//! scratchwave-spirv: see ARCHITECTURE.md. Filled in by its issue.

@@ -1,0 +1,1 @@
+//! scratchwave-benches: see ARCHITECTURE.md. Filled in by its issue.

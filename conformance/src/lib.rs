@@ -1,0 +1,1 @@
+//! scratchwave-conformance: see ARCHITECTURE.md. Filled in by its issue.

@@ -1,0 +1,11 @@
+//! The one seam for transcendental functions.
+//!
+//! Every `exp`, `sin`, `sqrt`, … in the kernel goes through this module, so the CPU and
+//! the GPU see exactly the same code. On the CPU the calls go to `libm`; rust-gpu maps the
+//! same `libm` calls onto GLSL.std.450 instructions.
+
+/// e^x.
+#[inline]
+pub fn exp(x: f32) -> f32 {
+    libm::expf(x)
+}
