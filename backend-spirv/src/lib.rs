@@ -1,1 +1,30 @@
-//! scratchwave-spirv: see ARCHITECTURE.md. Filled in by its issue.
+//! # scratchwave-spirv
+//!
+//! Runs scratchwave's kernel functions as rust-gpu compute shaders on Vulkan through wgpu.
+//!
+//! - `shader/` (`scratchwave-spirv-shader`): the `#[spirv(compute)]` entry points, thin
+//!   wrappers over the kernel. `build.rs` compiles it to SPIR-V on the pinned nightly
+//!   (`nightly-2026-08-15`, installed by `scripts/setup.sh`) and embeds the module as
+//!   [`SHADER_SPV`]; the workspace itself builds on stable.
+//! - [`Gpu`]: the Vulkan device. A discrete or integrated GPU when present, else lavapipe
+//!   (Mesa's CPU driver, `mesa-vulkan-drivers`); `SCRATCHWAVE_ADAPTER=lavapipe|gpu|<name
+//!   substring>` chooses explicitly ([`AdapterChoice`]). No Vulkan at all is a
+//!   [`SpirvError::NoVulkan`] naming the packages to install, never a panic.
+//! - [`Gpu::dispatch`]: the generic path — `Pod` input buffers in, one output element per
+//!   invocation out, chunked to the device limits, with [`Timings`] split into upload,
+//!   dispatch and readback.
+//! - Typed entry points on top of it, each with the CPU function it must agree with:
+//!   [`Gpu::math_probe`] / [`math_probe_cpu`].
+
+mod adapter;
+mod dispatch;
+mod error;
+mod gpu;
+mod probe;
+
+pub use adapter::{ADAPTER_ENV, AdapterChoice, AdapterKind, AdapterSummary};
+pub use dispatch::{Dispatched, Input, Timings};
+pub use error::{Result, SpirvError};
+pub use gpu::{Gpu, SHADER_SPV, entry_points};
+pub use probe::math_probe_cpu;
+pub use scratchwave_spirv_shader::probe::{MathFunction, ProbeParams};

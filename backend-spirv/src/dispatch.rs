@@ -1,0 +1,315 @@
+//! The generic dispatch: upload read-only `Pod` buffers, run one entry point once per
+//! output element (in chunks the device limits allow), read the output back, and say how
+//! long each of the three steps took.
+
+use crate::error::{Result, SpirvError};
+use crate::gpu::{ErrorScopes, Gpu, chunk_alignment};
+use bytemuck::Pod;
+use std::time::{Duration, Instant};
+use wgpu::util::DeviceExt as _;
+
+/// One read-only input buffer of a dispatch; its position in the list is its binding.
+#[derive(Clone, Copy, Debug)]
+pub struct Input<'a> {
+    bytes: &'a [u8],
+    /// `Some(element size)` when the buffer holds one element per output element.
+    per_item: Option<usize>,
+}
+
+impl<'a> Input<'a> {
+    /// One element per output element (queries, arguments). Large jobs are split into
+    /// chunks and each chunk sees only its own sub-range, indexed from 0.
+    pub fn per_item<T: Pod>(data: &'a [T]) -> Self {
+        Self {
+            bytes: bytemuck::cast_slice(data),
+            per_item: Some(size_of::<T>()),
+        }
+    }
+
+    /// A buffer every invocation may read whole (parameters, scratch segments, BVH nodes).
+    /// An empty slice is bound as 16 zero bytes, since Vulkan cannot bind nothing: entry
+    /// points must take counts from their parameters, not from `len()` of such a buffer.
+    pub fn whole<T: Pod>(data: &'a [T]) -> Self {
+        Self {
+            bytes: bytemuck::cast_slice(data),
+            per_item: None,
+        }
+    }
+}
+
+/// Wall-clock time of each step of a dispatch, each ended by waiting for the device.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timings {
+    /// Compiling the pipeline; zero once the entry point has been used on this [`Gpu`].
+    pub pipeline: Duration,
+    /// Creating the buffers and copying the inputs to the device.
+    pub upload: Duration,
+    /// Recording, submitting and finishing the compute work.
+    pub dispatch: Duration,
+    /// Copying the output to a mappable buffer and into host memory.
+    pub readback: Duration,
+}
+
+impl Timings {
+    /// `upload + dispatch + readback` (pipeline compilation excluded).
+    pub fn total(&self) -> Duration {
+        self.upload + self.dispatch + self.readback
+    }
+}
+
+/// The output of a dispatch and what it cost.
+#[derive(Clone, Debug)]
+pub struct Dispatched<O> {
+    /// One element per invocation.
+    pub output: Vec<O>,
+    /// Time per step.
+    pub timings: Timings,
+}
+
+impl Gpu {
+    /// Runs `entry` once for each of `len` output elements of type `O`.
+    ///
+    /// `inputs` are bound read-only at bindings `0..inputs.len()` of descriptor set 0 and
+    /// the output at binding `inputs.len()`, matching the entry point's signature (see
+    /// `scratchwave-spirv-shader`). Every [`Input::per_item`] buffer must hold `len`
+    /// elements. Element sizes must be multiples of 4 bytes (Vulkan storage buffers).
+    pub fn dispatch<O: Pod>(
+        &self,
+        entry: &str,
+        inputs: &[Input<'_>],
+        len: usize,
+    ) -> Result<Dispatched<O>> {
+        let plan = self.plan::<O>(entry, inputs, len)?;
+        if len == 0 {
+            return Ok(Dispatched {
+                output: Vec::new(),
+                timings: Timings::default(),
+            });
+        }
+        let (pipeline, pipeline_time) = self.pipeline(entry, inputs.len())?;
+        let mut timings = Timings {
+            pipeline: pipeline_time,
+            ..Timings::default()
+        };
+
+        let start = Instant::now();
+        let scope = ErrorScopes::push(&self.device);
+        let input_buffers: Vec<wgpu::Buffer> = inputs
+            .iter()
+            .enumerate()
+            .map(|(i, input)| {
+                let contents: &[u8] = if input.bytes.is_empty() {
+                    &[0; 16]
+                } else {
+                    input.bytes
+                };
+                self.device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some(&format!("{entry} input {i}")),
+                        contents,
+                        usage: wgpu::BufferUsages::STORAGE,
+                    })
+            })
+            .collect();
+        let output_bytes = plan.output_bytes;
+        let output = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(&format!("{entry} output")),
+            size: output_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(&format!("{entry} readback")),
+            size: output_bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        scope.pop(&format!("uploading the inputs of `{entry}`"))?;
+        self.queue.submit([]);
+        self.wait("uploading")?;
+        timings.upload = start.elapsed();
+
+        let start = Instant::now();
+        let scope = ErrorScopes::push(&self.device);
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(entry),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&pipeline.pipeline);
+            let group = scratchwave_spirv_shader::WORKGROUP_SIZE as usize;
+            for first in (0..len).step_by(plan.chunk) {
+                let count = plan.chunk.min(len - first);
+                let range = |stride: usize| wgpu::BufferBinding {
+                    buffer: &output,
+                    offset: (first * stride) as u64,
+                    size: wgpu::BufferSize::new((count * stride) as u64),
+                };
+                let mut entries: Vec<wgpu::BindGroupEntry<'_>> = input_buffers
+                    .iter()
+                    .zip(inputs)
+                    .enumerate()
+                    .map(|(i, (buffer, input))| wgpu::BindGroupEntry {
+                        binding: i as u32,
+                        resource: match input.per_item {
+                            Some(stride) => wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                                buffer,
+                                ..range(stride)
+                            }),
+                            None => buffer.as_entire_binding(),
+                        },
+                    })
+                    .collect();
+                entries.push(wgpu::BindGroupEntry {
+                    binding: inputs.len() as u32,
+                    resource: wgpu::BindingResource::Buffer(range(size_of::<O>())),
+                });
+                let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some(entry),
+                    layout: &pipeline.layout,
+                    entries: &entries,
+                });
+                pass.set_bind_group(0, &bind_group, &[]);
+                pass.dispatch_workgroups(count.div_ceil(group) as u32, 1, 1);
+            }
+        }
+        self.queue.submit([encoder.finish()]);
+        scope.pop(&format!("dispatching `{entry}`"))?;
+        self.wait("dispatching")?;
+        timings.dispatch = start.elapsed();
+
+        let start = Instant::now();
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&output, 0, &staging, 0, output_bytes);
+        self.queue.submit([encoder.finish()]);
+        let (sender, receiver) = std::sync::mpsc::channel();
+        staging.map_async(wgpu::MapMode::Read, .., move |result| {
+            let _ = sender.send(result);
+        });
+        self.wait("reading back")?;
+        let mapped = receiver.recv().ok().and_then(Result::ok);
+        if mapped.is_none() {
+            return Err(SpirvError::Gpu {
+                during: format!("mapping the output of `{entry}`"),
+                message: "the readback buffer could not be mapped".into(),
+            });
+        }
+        let output: Vec<O> = bytemuck::pod_collect_to_vec(&staging.get_mapped_range(..));
+        staging.unmap();
+        timings.readback = start.elapsed();
+        Ok(Dispatched { output, timings })
+    }
+
+    /// Checks the request against the shader conventions and the device limits.
+    fn plan<O: Pod>(&self, entry: &str, inputs: &[Input<'_>], len: usize) -> Result<Plan> {
+        let limits = &self.limits;
+        let too_large = |what: String, bytes: u64, limit: &'static str, max: u64| {
+            Err(SpirvError::TooLarge {
+                entry: entry.to_owned(),
+                what,
+                bytes,
+                limit,
+                max,
+            })
+        };
+        let bad_input = |index: usize, problem: String| {
+            Err(SpirvError::BadInput {
+                entry: entry.to_owned(),
+                index,
+                problem,
+            })
+        };
+        if size_of::<O>() == 0 || size_of::<O>() % 4 != 0 {
+            return Err(SpirvError::BadOutput {
+                entry: entry.to_owned(),
+                size: size_of::<O>(),
+            });
+        }
+        let buffers = inputs.len() as u32 + 1;
+        if buffers > limits.max_storage_buffers_per_shader_stage {
+            return bad_input(
+                inputs.len(),
+                format!(
+                    "{buffers} storage buffers exceed the device's limit of {}",
+                    limits.max_storage_buffers_per_shader_stage
+                ),
+            );
+        }
+        let max_binding = limits.max_storage_buffer_binding_size;
+        let mut chunk = self.max_chunk;
+        let mut strides = vec![size_of::<O>()];
+        for (index, input) in inputs.iter().enumerate() {
+            let bytes = input.bytes.len() as u64;
+            if bytes > limits.max_buffer_size {
+                return too_large(
+                    format!("input {index}"),
+                    bytes,
+                    "max_buffer_size",
+                    limits.max_buffer_size,
+                );
+            }
+            match input.per_item {
+                Some(stride) => {
+                    if stride == 0 || stride % 4 != 0 {
+                        return bad_input(
+                            index,
+                            format!("element size {stride} bytes is not a non-zero multiple of 4"),
+                        );
+                    }
+                    if input.bytes.len() != len * stride {
+                        let elements = input.bytes.len() / stride;
+                        return bad_input(index, format!("{elements} elements for {len} outputs"));
+                    }
+                    strides.push(stride);
+                }
+                None => {
+                    if bytes % 4 != 0 {
+                        return bad_input(index, format!("{bytes} bytes is not a multiple of 4"));
+                    }
+                    if bytes > max_binding {
+                        return too_large(
+                            format!("input {index}"),
+                            bytes,
+                            "max_storage_buffer_binding_size",
+                            max_binding,
+                        );
+                    }
+                }
+            }
+        }
+        let output_bytes = (len * size_of::<O>()) as u64;
+        if output_bytes > limits.max_buffer_size {
+            return too_large(
+                "the output".into(),
+                output_bytes,
+                "max_buffer_size",
+                limits.max_buffer_size,
+            );
+        }
+        // Per-item bindings of one chunk must fit the binding limit; keep the alignment.
+        let align = chunk_alignment(limits);
+        for stride in strides {
+            let fit = (max_binding / stride as u64) as usize / align * align;
+            if fit == 0 {
+                return too_large(
+                    format!("one chunk of {align} elements of {stride} bytes"),
+                    (align * stride) as u64,
+                    "max_storage_buffer_binding_size",
+                    max_binding,
+                );
+            }
+            chunk = chunk.min(fit);
+        }
+        Ok(Plan {
+            chunk,
+            output_bytes,
+        })
+    }
+}
+
+struct Plan {
+    /// Elements per dispatch.
+    chunk: usize,
+    output_bytes: u64,
+}

@@ -1,0 +1,92 @@
+//! The one error type of the SPIR-V backend.
+
+use thiserror::Error;
+
+/// What can go wrong between asking for a Vulkan device and reading results back.
+/// The kernel itself cannot fail; every variant is about the machine or the request.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum SpirvError {
+    /// No Vulkan driver answered: the loader (`libvulkan1`) or every ICD is missing.
+    #[error(
+        "no Vulkan device found: install the Vulkan loader and the lavapipe CPU driver \
+         (Debian/Ubuntu: `apt install mesa-vulkan-drivers libvulkan1`, or run scripts/setup.sh); \
+         the CPU backends work without Vulkan"
+    )]
+    NoVulkan,
+    /// `SCRATCHWAVE_ADAPTER` (or an explicit choice) matched none of the adapters.
+    #[error("no Vulkan adapter matches {wanted}; available: {available}")]
+    NoMatchingAdapter {
+        /// The choice as the user spelled it.
+        wanted: String,
+        /// The adapters that were found, `name (kind)`, comma-separated.
+        available: String,
+    },
+    /// The adapter refused to create a device.
+    #[error("creating a device on {adapter}: {source}")]
+    RequestDevice {
+        /// Adapter name.
+        adapter: String,
+        /// wgpu's reason.
+        source: wgpu::RequestDeviceError,
+    },
+    /// The adapter lacks a feature the backend needs.
+    #[error("{adapter} lacks the wgpu feature {feature}")]
+    MissingFeature {
+        /// Adapter name.
+        adapter: String,
+        /// The feature's name.
+        feature: &'static str,
+    },
+    /// The entry point is not in the embedded shader module.
+    #[error("no entry point `{name}` in the shader module; it has: {available}")]
+    UnknownEntryPoint {
+        /// The name asked for.
+        name: String,
+        /// The module's entry points, comma-separated.
+        available: String,
+    },
+    /// An input buffer does not fit the dispatch.
+    #[error("input {index} of `{entry}`: {problem}")]
+    BadInput {
+        /// Entry point.
+        entry: String,
+        /// Position of the input in the list passed to the dispatch (= its binding).
+        index: usize,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// The output element type cannot be bound as a storage buffer.
+    #[error("output of `{entry}`: element size {size} bytes is not a non-zero multiple of 4")]
+    BadOutput {
+        /// Entry point.
+        entry: String,
+        /// `size_of` the output element.
+        size: usize,
+    },
+    /// A buffer exceeds what the device can allocate or bind.
+    #[error("`{entry}`: {what} needs {bytes} bytes, more than the device's {limit} limit of {max}")]
+    TooLarge {
+        /// Entry point.
+        entry: String,
+        /// Which buffer.
+        what: String,
+        /// Its size.
+        bytes: u64,
+        /// The wgpu limit's name.
+        limit: &'static str,
+        /// The limit's value.
+        max: u64,
+    },
+    /// wgpu reported a validation, out-of-memory or internal error.
+    #[error("GPU error while {during}: {message}")]
+    Gpu {
+        /// What the backend was doing.
+        during: String,
+        /// wgpu's description.
+        message: String,
+    },
+}
+
+/// Result with [`SpirvError`].
+pub type Result<T, E = SpirvError> = std::result::Result<T, E>;

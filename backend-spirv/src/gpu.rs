@@ -1,0 +1,304 @@
+//! The Vulkan device, the embedded shader module and its compute pipelines.
+
+use crate::adapter::{AdapterChoice, AdapterSummary};
+use crate::error::{Result, SpirvError};
+use std::borrow::Cow;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, PoisonError};
+use std::time::{Duration, Instant};
+
+/// The SPIR-V module `build.rs` compiled from `shader/` on the pinned nightly.
+pub const SHADER_SPV: &[u8] = include_bytes!(env!("SCRATCHWAVE_SHADER_SPV"));
+
+/// The module's entry points, comma-separated (from rust-gpu's build metadata).
+const ENTRY_POINTS: &str = env!("SCRATCHWAVE_SHADER_ENTRY_POINTS");
+
+/// The entry points of [`SHADER_SPV`].
+pub fn entry_points() -> impl Iterator<Item = &'static str> {
+    ENTRY_POINTS.split(',').filter(|name| !name.is_empty())
+}
+
+/// A compute pipeline for one entry point and number of input buffers.
+pub(crate) struct Pipeline {
+    pub(crate) layout: wgpu::BindGroupLayout,
+    pub(crate) pipeline: wgpu::ComputePipeline,
+}
+
+/// A Vulkan device with the scratchwave shader module loaded.
+///
+/// Create one and keep it: device creation and each entry point's first pipeline
+/// compilation are slow (lavapipe JIT-compiles through LLVM). `Gpu` is `Send + Sync`;
+/// dispatches from several threads serialise on the queue.
+pub struct Gpu {
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    pub(crate) limits: wgpu::Limits,
+    adapter: AdapterSummary,
+    module: wgpu::ShaderModule,
+    pipelines: Mutex<HashMap<(String, usize), Arc<Pipeline>>>,
+    /// Largest chunk (elements) one dispatch covers; see [`Gpu::with_max_chunk`].
+    pub(crate) max_chunk: usize,
+}
+
+impl Gpu {
+    /// Opens the adapter [`AdapterChoice::from_env`] selects (`SCRATCHWAVE_ADAPTER`).
+    pub fn new() -> Result<Self> {
+        Self::with_adapter(&AdapterChoice::from_env())
+    }
+
+    /// Opens the adapter `choice` selects among the machine's Vulkan adapters.
+    pub fn with_adapter(choice: &AdapterChoice) -> Result<Self> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
+            backends: wgpu::Backends::VULKAN,
+            ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
+        });
+        let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::VULKAN));
+        if adapters.is_empty() {
+            return Err(SpirvError::NoVulkan);
+        }
+        let summaries: Vec<AdapterSummary> = adapters
+            .iter()
+            .map(|a| AdapterSummary::from_wgpu(&a.get_info()))
+            .collect();
+        let Some(index) = choice.select(&summaries) else {
+            let available = summaries
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>();
+            return Err(SpirvError::NoMatchingAdapter {
+                wanted: choice.to_string(),
+                available: available.join(", "),
+            });
+        };
+        Self::open(&adapters[index], summaries[index].clone())
+    }
+
+    fn open(adapter: &wgpu::Adapter, summary: AdapterSummary) -> Result<Self> {
+        if !adapter
+            .features()
+            .contains(wgpu::Features::PASSTHROUGH_SHADERS)
+        {
+            return Err(SpirvError::MissingFeature {
+                adapter: summary.name,
+                feature: "PASSTHROUGH_SHADERS",
+            });
+        }
+        // Everything the adapter offers: large storage bindings matter for 10⁶-query jobs.
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("scratchwave"),
+            required_features: wgpu::Features::PASSTHROUGH_SHADERS,
+            required_limits: limits.clone(),
+            ..Default::default()
+        }))
+        .map_err(|source| SpirvError::RequestDevice {
+            adapter: summary.name.clone(),
+            source,
+        })?;
+        // Errors are caught by error scopes around each operation; anything that escapes
+        // them must not panic (wgpu's default handler does).
+        device.on_uncaptured_error(Arc::new(|error| {
+            eprintln!("scratchwave-spirv: uncaptured wgpu error: {error}");
+        }));
+
+        let words: Vec<u32> = SHADER_SPV
+            .chunks_exact(4)
+            .map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]))
+            .collect();
+        let entry_points: Vec<wgpu::PassthroughShaderEntryPoint<'_>> = entry_points()
+            .map(|name| wgpu::PassthroughShaderEntryPoint {
+                name: Cow::Borrowed(name),
+                workgroup_size: (scratchwave_spirv_shader::WORKGROUP_SIZE, 1, 1),
+            })
+            .collect();
+        let scope = ErrorScopes::push(&device);
+        // SAFETY: the module is rust-gpu's output for `shader/`, validated by spirv-val at
+        // build time; its buffer interface (set 0, inputs then output, runtime arrays of
+        // the Pod types in `scratchwave-spirv-shader`) is exactly what `dispatch` binds.
+        let module = unsafe {
+            device.create_shader_module_passthrough(wgpu::ShaderModuleDescriptorPassthrough {
+                label: Some("scratchwave-spirv-shader"),
+                entry_points: Cow::Owned(entry_points),
+                spirv: Some(Cow::Owned(words)),
+                ..Default::default()
+            })
+        };
+        scope.pop("loading the SPIR-V module")?;
+
+        Ok(Self {
+            device,
+            queue,
+            max_chunk: max_chunk_for(&limits),
+            limits,
+            adapter: summary,
+            module,
+            pipelines: Mutex::new(HashMap::new()),
+        })
+    }
+
+    /// The adapter in use.
+    pub fn adapter(&self) -> &AdapterSummary {
+        &self.adapter
+    }
+
+    /// Caps the elements per dispatch (normally set by the device limits). Tests use a
+    /// small cap to exercise the chunking that 10⁶-element jobs need on real limits.
+    /// The cap is rounded down to a multiple of the storage offset alignment.
+    pub fn with_max_chunk(mut self, elements: usize) -> Self {
+        let align = chunk_alignment(&self.limits);
+        self.max_chunk = (elements / align * align).clamp(align, max_chunk_for(&self.limits));
+        self
+    }
+
+    /// The pipeline for `entry` with `inputs` read-only buffers, compiled on first use;
+    /// also returns the compile time (zero when cached).
+    pub(crate) fn pipeline(&self, entry: &str, inputs: usize) -> Result<(Arc<Pipeline>, Duration)> {
+        let key = (entry.to_owned(), inputs);
+        if let Some(p) = self
+            .pipelines
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .get(&key)
+        {
+            return Ok((Arc::clone(p), Duration::ZERO));
+        }
+        if !entry_points().any(|name| name == entry) {
+            return Err(SpirvError::UnknownEntryPoint {
+                name: entry.to_owned(),
+                available: entry_points().collect::<Vec<_>>().join(", "),
+            });
+        }
+        let start = Instant::now();
+        let storage = |binding: u32, read_only: bool| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let entries: Vec<_> = (0..inputs)
+            .map(|i| storage(i as u32, true))
+            .chain([storage(inputs as u32, false)])
+            .collect();
+        let scope = ErrorScopes::push(&self.device);
+        let layout = self
+            .device
+            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(entry),
+                entries: &entries,
+            });
+        let pipeline_layout = self
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(entry),
+                bind_group_layouts: &[Some(&layout)],
+                immediate_size: 0,
+            });
+        let pipeline = self
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module: &self.module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+        scope.pop(&format!("creating the pipeline for `{entry}`"))?;
+        let compiled = Arc::new(Pipeline { layout, pipeline });
+        self.pipelines
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .insert(key, Arc::clone(&compiled));
+        Ok((compiled, start.elapsed()))
+    }
+
+    /// Blocks until the queue is idle.
+    pub(crate) fn wait(&self, during: &str) -> Result<()> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(drop)
+            .map_err(|e| SpirvError::Gpu {
+                during: during.to_owned(),
+                message: e.to_string(),
+            })
+    }
+}
+
+/// Elements per dispatch under `limits`: at most the workgroup-count limit along x, and a
+/// multiple of the storage offset alignment so every chunk's binding offset is aligned
+/// whatever the element size.
+fn max_chunk_for(limits: &wgpu::Limits) -> usize {
+    let align = chunk_alignment(limits);
+    let groups = limits.max_compute_workgroups_per_dimension as usize;
+    (groups * scratchwave_spirv_shader::WORKGROUP_SIZE as usize / align * align).max(align)
+}
+
+/// Chunk lengths are multiples of this (a power of two ≥ the workgroup size), so every
+/// chunk's binding offset is aligned whatever the element size.
+pub(crate) fn chunk_alignment(limits: &wgpu::Limits) -> usize {
+    (limits.min_storage_buffer_offset_alignment as usize)
+        .max(scratchwave_spirv_shader::WORKGROUP_SIZE as usize)
+}
+
+/// Validation, out-of-memory and internal error scopes around one operation.
+pub(crate) struct ErrorScopes {
+    scopes: [wgpu::ErrorScopeGuard; 3],
+}
+
+impl ErrorScopes {
+    pub(crate) fn push(device: &wgpu::Device) -> Self {
+        Self {
+            scopes: [
+                device.push_error_scope(wgpu::ErrorFilter::Internal),
+                device.push_error_scope(wgpu::ErrorFilter::OutOfMemory),
+                device.push_error_scope(wgpu::ErrorFilter::Validation),
+            ],
+        }
+    }
+
+    /// Pops the scopes (innermost first) and reports the first error caught.
+    pub(crate) fn pop(self, during: &str) -> Result<()> {
+        let mut first = None;
+        for scope in self.scopes.into_iter().rev() {
+            if let Some(error) = pollster::block_on(scope.pop()) {
+                first.get_or_insert(error);
+            }
+        }
+        match first {
+            None => Ok(()),
+            Some(error) => Err(SpirvError::Gpu {
+                during: during.to_owned(),
+                message: error.to_string(),
+            }),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chunks_respect_workgroup_limit_and_alignment() {
+        let limits = wgpu::Limits {
+            max_compute_workgroups_per_dimension: 65_535,
+            min_storage_buffer_offset_alignment: 256,
+            ..wgpu::Limits::default()
+        };
+        let chunk = max_chunk_for(&limits);
+        assert_eq!(chunk % 256, 0);
+        assert!(chunk / 64 <= 65_535);
+        assert!(chunk > 4_000_000);
+    }
+
+    #[test]
+    fn module_is_spirv_with_entry_points() {
+        assert_eq!(SHADER_SPV.len() % 4, 0);
+        assert_eq!(SHADER_SPV[..4], 0x0723_0203_u32.to_le_bytes());
+        assert!(entry_points().any(|name| name == "math_probe"));
+    }
+}

@@ -1,0 +1,198 @@
+//! The kernel's own `f32` `exp`, `sin` and `cos`: Cody–Waite range reduction and short
+//! polynomials (Cephes `expf`/`sinf`/`cosf` coefficients) written with `+`, `-`, `*`,
+//! `floor` and bit casts only — no libm call, no GLSL.std.450 instruction.
+//!
+//! Why: with the default seam the CPU runs libm and the GPU runs the driver's
+//! `GLSL.std.450` `Exp`/`Sin`/`Cos` (Vulkan allows them 3 ULP / absolute 2⁻¹¹ error), so CPU
+//! and GPU results differ in the last bits. Feature `portable-math` routes
+//! [`super::exp`], [`super::sin`] and [`super::cos`] here on every target, which makes the
+//! two results identical wherever the driver rounds `+`/`*` exactly and does not fuse them
+//! into `fma` (measured in the SPIR-V backend's math-seam test; see ARCHITECTURE.md).
+//!
+//! | function | domain of full accuracy | max error (vs. correctly rounded) |
+//! |---|---|---|
+//! | [`exp`] | all `f32`; overflow to `+∞` above 88.72, `0` below −103.97 | ≈ 1 ULP |
+//! | [`sin`], [`cos`] | \|x\| ≤ 8192 (3-part π/4 reduction) | ≈ 1 ULP; absolute error grows with \|x\| beyond |
+//!
+//! NaN in, NaN out. These are always compiled, so both variants can be compared in one
+//! build; the feature only changes which one the seam calls.
+
+/// log₂e.
+const LOG2E: f32 = core::f32::consts::LOG2_E;
+/// ln 2 split so that `k * LN2_HI` is exact for |k| < 2⁹: `LN2_HI + LN2_LO ≈ ln 2`.
+const LN2_HI: f32 = 0.693_359_375;
+const LN2_LO: f32 = -2.121_944_400_546_905_8e-4;
+/// Above this `e^x` overflows `f32`.
+const EXP_OVERFLOW: f32 = 88.722_839;
+/// Below this `e^x` rounds to zero (half the smallest subnormal).
+const EXP_UNDERFLOW: f32 = -103.972_08;
+
+/// 4/π.
+const FRAC_4_PI: f32 = 1.273_239_544_735_162_7;
+/// π/4 split into three parts whose products with a quadrant count below 2¹³ are exact.
+const PIO4_1: f32 = 0.785_156_25;
+const PIO4_2: f32 = 2.418_756_484_985_351_6e-4;
+const PIO4_3: f32 = 3.774_894_977_445_941e-8;
+
+/// `2^k` for `k` in `-126..=127`, by assembling the exponent field.
+#[inline]
+fn exp2i(k: i32) -> f32 {
+    f32::from_bits(((k + 127) as u32) << 23)
+}
+
+/// e^x to about 1 ULP.
+#[inline]
+pub fn exp(x: f32) -> f32 {
+    if x > EXP_OVERFLOW {
+        return f32::INFINITY;
+    }
+    if x < EXP_UNDERFLOW {
+        return 0.0;
+    }
+    // x = k ln2 + r, |r| ≤ ln2/2.
+    let kf = libm_free_floor(x * LOG2E + 0.5);
+    let r = x - kf * LN2_HI - kf * LN2_LO;
+    let r2 = r * r;
+    let mut p = 1.987_569_150_0e-4_f32;
+    p = p * r + 1.398_199_950_7e-3;
+    p = p * r + 8.333_451_907_3e-3;
+    p = p * r + 4.166_579_589_4e-2;
+    p = p * r + 1.666_666_545_9e-1;
+    p = p * r + 5.000_000_120_1e-1;
+    let er = p * r2 + r + 1.0;
+    // 2^k in two factors so that k = 128 (x near the overflow edge) and k < -126
+    // (subnormal results) stay representable; NaN makes `k` meaningless but keeps `er` NaN.
+    let k = kf as i32;
+    let k1 = k / 2;
+    er * exp2i(k1) * exp2i(k - k1)
+}
+
+/// Sine, about 1 ULP for |x| ≤ 8192.
+#[inline]
+pub fn sin(x: f32) -> f32 {
+    let (j, r) = reduce_pio4(x);
+    // sin(-x) = -sin(x); quadrants 2, 3 (mod 4) flip the sign once more.
+    let negate = (x < 0.0) != (j & 4 != 0);
+    let s = if j & 2 != 0 { cos_poly(r) } else { sin_poly(r) };
+    if negate { -s } else { s }
+}
+
+/// Cosine, about 1 ULP for |x| ≤ 8192.
+#[inline]
+pub fn cos(x: f32) -> f32 {
+    let (j, r) = reduce_pio4(x);
+    let negate = ((j + 2) & 4) != 0;
+    let c = if j & 2 != 0 { sin_poly(r) } else { cos_poly(r) };
+    if negate { -c } else { c }
+}
+
+/// |x| = j·π/4 + r with j even (octant pair) and |r| ≤ π/4; returns (j, r).
+#[inline]
+fn reduce_pio4(x: f32) -> (u32, f32) {
+    let ax = if x < 0.0 { -x } else { x };
+    // Beyond 2²⁴ octants the result is meaningless anyway; the clamp only keeps the
+    // float-to-int conversion below defined on SPIR-V. NaN and ∞ give NaN in `r`.
+    let q = libm_free_floor(ax * FRAC_4_PI);
+    let q = if q < 16_777_216.0 { q } else { 0.0 };
+    let mut j = q as u32;
+    let mut y = q;
+    // Map odd octants onto the next even one: r then lies in [-π/4, π/4].
+    if j & 1 != 0 {
+        j += 1;
+        y += 1.0;
+    }
+    let r = ((ax - y * PIO4_1) - y * PIO4_2) - y * PIO4_3;
+    (j & 7, r)
+}
+
+/// sin(r) for |r| ≤ π/4.
+#[inline]
+fn sin_poly(r: f32) -> f32 {
+    let z = r * r;
+    ((-1.951_529_589_1e-4 * z + 8.332_160_873_6e-3) * z - 1.666_665_461_1e-1) * z * r + r
+}
+
+/// cos(r) for |r| ≤ π/4.
+#[inline]
+fn cos_poly(r: f32) -> f32 {
+    let z = r * r;
+    ((2.443_315_711_809_948e-5 * z - 1.388_731_625_493_765e-3) * z + 4.166_664_568_298_827e-2)
+        * z
+        * z
+        - 0.5 * z
+        + 1.0
+}
+
+/// `floor` from a float→int round trip: exact for |x| < 2²³ (the only range used above),
+/// identical on every target (no libm, no `GLSL.std.450 Floor`).
+#[inline]
+fn libm_free_floor(x: f32) -> f32 {
+    // |x| ≥ 2²³ is already integral (and NaN stays NaN).
+    let ax = if x < 0.0 { -x } else { x };
+    if !(ax < 8_388_608.0) {
+        return x;
+    }
+    let t = (x as i32) as f32;
+    if t > x { t - 1.0 } else { t }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Distance in units in the last place between two finite floats of the same sign.
+    fn ulps(a: f32, b: f32) -> u32 {
+        (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs() as u32
+    }
+
+    #[test]
+    fn exp_matches_libm_within_2_ulp() {
+        let mut worst = 0;
+        let mut x = -87.0_f32;
+        while x < 88.5 {
+            worst = worst.max(ulps(exp(x), libm::expf(x)));
+            x += 0.013_7;
+        }
+        assert!(worst <= 2, "worst {worst} ULP");
+    }
+
+    #[test]
+    fn exp_edge_cases() {
+        assert_eq!(exp(0.0), 1.0);
+        assert_eq!(exp(f32::INFINITY), f32::INFINITY);
+        assert_eq!(exp(f32::NEG_INFINITY), 0.0);
+        assert!(exp(f32::NAN).is_nan());
+        assert_eq!(exp(89.0), f32::INFINITY);
+        assert_eq!(exp(-104.0), 0.0);
+        // k = 128 at the overflow edge, subnormal results below -87.3.
+        assert!(ulps(exp(88.7), libm::expf(88.7)) <= 2);
+        let sub = exp(-100.0);
+        assert!(sub > 0.0 && sub < f32::MIN_POSITIVE);
+        assert!((sub / libm::expf(-100.0) - 1.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn sin_cos_match_libm_within_2_ulp_or_tiny_absolute() {
+        let mut x = -8192.0_f32;
+        while x < 8192.0 {
+            for (ours, reference) in [(sin(x), libm::sinf(x)), (cos(x), libm::cosf(x))] {
+                // Near zeros of sin/cos the relative error of any f32 reduction is large;
+                // judge those by absolute error (the reduced argument carries ~2⁻²⁴·|x|).
+                let ok = ulps(ours, reference) <= 2
+                    || (ours - reference).abs() < 1e-7 * x.abs().max(1.0);
+                assert!(ok, "x = {x}: {ours} vs {reference}");
+            }
+            x += 0.377;
+        }
+    }
+
+    #[test]
+    fn sin_cos_edge_cases() {
+        assert_eq!(sin(0.0), 0.0);
+        assert_eq!(cos(0.0), 1.0);
+        assert!(sin(f32::NAN).is_nan() && cos(f32::NAN).is_nan());
+        assert!(sin(f32::INFINITY).is_nan() && cos(f32::INFINITY).is_nan());
+        assert_eq!(sin(-1.0), -sin(1.0));
+        assert_eq!(cos(-1.0), cos(1.0));
+    }
+}
