@@ -102,7 +102,8 @@ pub fn eta_p_eq16(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
     let sb = centre_offset(s, e);
     let pi32 = math::PI * math::SQRT_PI;
     2.0 * sigma * sigma / ap
-        * (alpha * sigma * pi32 * l + (1.0 - alpha) * math::PI * ap * math::exp(-sb * sb / (sigma * sigma)))
+        * (alpha * sigma * pi32 * l
+            + (1.0 - alpha) * math::PI * ap * math::exp(-sb * sb / (sigma * sigma)))
 }
 
 /// Velinov Eq. 18 without its factor 2: `ρ_P ≈ W l / A_P`.
@@ -156,7 +157,11 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
     n += 1;
     br[n] = 0.5 * math::PI;
     n += 1;
-    let features = [-frame.half_len, frame.half_len, chord_crossing(eu, ev, qb, qc)];
+    let features = [
+        -frame.half_len,
+        frame.half_len,
+        chord_crossing(eu, ev, qb, qc),
+    ];
     let mut f = 0;
     while f < 3 {
         let mut o = 0;
@@ -209,10 +214,16 @@ const FRAC_1_SQRT_2: f32 = core::f32::consts::FRAC_1_SQRT_2;
 /// centre's `u` when the chords run parallel to the scratch line.
 #[inline]
 fn chord_crossing(eu: f32, ev: f32, qb: f32, qc: f32) -> f32 {
-    if math::abs(qb) > 1.0e-12 * qc { eu + ev * qc / qb } else { eu }
+    if math::abs(qb) > 1.0e-12 * qc {
+        eu + ev * qc / qb
+    } else {
+        eu
+    }
 }
 
 /// Insertion sort of the first `n` entries (n ≤ 17; no recursion for SPIR-V).
+// Slice methods such as `swap` are avoided in the kernel (rust-gpu limits, DESIGN.md).
+#[allow(clippy::manual_swap)]
 fn sort(a: &mut [f32; MAX_BREAKS], n: usize) {
     let mut i = 1;
     while i < n && i < MAX_BREAKS {

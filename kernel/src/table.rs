@@ -72,12 +72,26 @@ const _: () = assert!(core::mem::size_of::<Material>() == 32);
 impl Material {
     /// A constant reflectance `F`.
     pub const fn constant(f: f32) -> Material {
-        Material { kind: 0, fresnel_angle: 0, f, n: 0.0, k: 0.0, pad: [0; 3] }
+        Material {
+            kind: 0,
+            fresnel_angle: 0,
+            f,
+            n: 0.0,
+            k: 0.0,
+            pad: [0; 3],
+        }
     }
 
     /// Fresnel reflectance of `n + ik` at the given angle.
     pub const fn ior(n: f32, k: f32, angle: FresnelAngle) -> Material {
-        Material { kind: 1, fresnel_angle: angle as u32, f: 0.0, n, k, pad: [0; 3] }
+        Material {
+            kind: 1,
+            fresnel_angle: angle as u32,
+            f: 0.0,
+            n,
+            k,
+            pad: [0; 3],
+        }
     }
 
     /// The reflectance for unit directions `wi`, `wo`.
@@ -155,7 +169,11 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
     }
     let xi = xi_of(wi, wo, lambda);
     let model = Model::from_u32(params.model);
-    let eta = if model == Model::Velinov { EtaMode::from_u32(params.eta) } else { EtaMode::Finite };
+    let eta = if model == Model::Velinov {
+        EtaMode::from_u32(params.eta)
+    } else {
+        EtaMode::Finite
+    };
     let inputs = ResponseInputs {
         x0: Vec2::from_array(q.x),
         xi,

@@ -16,7 +16,9 @@ pub mod set;
 pub mod spatial_phase;
 
 pub use profile::{DepthTerm, Profile};
-pub use response::{ResponseInputs, ScratchTerms, base_response, scratch_area_density, scratch_response};
+pub use response::{
+    ResponseInputs, ScratchTerms, base_response, scratch_area_density, scratch_response,
+};
 pub use segment::{Scratch, SegmentFrame};
 pub use set::{ScratchSet, ScratchSlice};
 pub use spatial_phase::{EtaMode, eta_finite, eta_infinite};

@@ -28,7 +28,11 @@ impl Profile {
     /// `Rect` (the std side validates before upload).
     #[inline]
     pub fn from_u32(v: u32) -> Profile {
-        if v == 1 { Profile::Triangle } else { Profile::Rect }
+        if v == 1 {
+            Profile::Triangle
+        } else {
+            Profile::Rect
+        }
     }
 }
 
@@ -45,7 +49,11 @@ impl DepthTerm {
     /// Decodes a `u32` (unknown → `SmallAngle`).
     #[inline]
     pub fn from_u32(v: u32) -> DepthTerm {
-        if v == 1 { DepthTerm::Exact } else { DepthTerm::SmallAngle }
+        if v == 1 {
+            DepthTerm::Exact
+        } else {
+            DepthTerm::SmallAngle
+        }
     }
 
     /// The `γ` to use in the depth phase given the true `γi + γo`.
@@ -66,7 +74,14 @@ pub fn mask_transform(width: f32, xi2: f32) -> f32 {
 
 /// Groove transform `P(ξ₂)` for the given profile (Werner Eqs. 27–31, corrected).
 /// `gamma` is the effective `γi + γo`, `lambda` in µm.
-pub fn profile_transform(profile: Profile, width: f32, depth: f32, gamma: f32, lambda: f32, xi2: f32) -> C32 {
+pub fn profile_transform(
+    profile: Profile,
+    width: f32,
+    depth: f32,
+    gamma: f32,
+    lambda: f32,
+    xi2: f32,
+) -> C32 {
     let beta = math::PI * width * xi2;
     let kappa = math::TAU * gamma * depth / lambda;
     match profile {
@@ -82,7 +97,14 @@ pub fn profile_transform(profile: Profile, width: f32, depth: f32, gamma: f32, l
 /// `M − P`: what one scratch subtracts from the base reflection per unit spatial phase
 /// (the bracket of Werner Eq. 17). The rectangle uses the cancellation-free
 /// `1 − e^{iκ}` form so shallow grooves keep full relative accuracy.
-pub fn mask_minus_profile(profile: Profile, width: f32, depth: f32, gamma: f32, lambda: f32, xi2: f32) -> C32 {
+pub fn mask_minus_profile(
+    profile: Profile,
+    width: f32,
+    depth: f32,
+    gamma: f32,
+    lambda: f32,
+    xi2: f32,
+) -> C32 {
     match profile {
         Profile::Rect => {
             let kappa = math::TAU * gamma * depth / lambda;

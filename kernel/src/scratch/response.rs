@@ -51,7 +51,11 @@ pub struct ResponseInputs {
 
 /// Sums the scratch terms over every scratch within [`CUTOFF_SIGMAS`]·σ of `x0`.
 pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTerms {
-    let mut terms = ScratchTerms { coherent: C32::new(0.0, 0.0), incoherent: 0.0, area_density: 0.0 };
+    let mut terms = ScratchTerms {
+        coherent: C32::new(0.0, 0.0),
+        incoherent: 0.0,
+        area_density: 0.0,
+    };
     let sigma = q.sigma;
     set.for_each_near(q.x0, CUTOFF_SIGMAS * sigma, |s: Scratch| {
         if let Some(frame) = s.frame() {

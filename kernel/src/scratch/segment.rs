@@ -64,7 +64,11 @@ impl Scratch {
         let p0 = Vec2::from_array(self.p0);
         let d = Vec2::from_array(self.p1) - p0;
         let l2 = d.length_squared();
-        let t = if l2 > 0.0 { crate::math::clamp((x - p0).dot(d) / l2, 0.0, 1.0) } else { 0.0 };
+        let t = if l2 > 0.0 {
+            crate::math::clamp((x - p0).dot(d) / l2, 0.0, 1.0)
+        } else {
+            0.0
+        };
         (p0 + t * d - x).length()
     }
 }

@@ -24,7 +24,11 @@ impl EtaMode {
     /// Decodes a `u32` (unknown → `Finite`).
     #[inline]
     pub fn from_u32(v: u32) -> EtaMode {
-        if v == 1 { EtaMode::Infinite } else { EtaMode::Finite }
+        if v == 1 {
+            EtaMode::Infinite
+        } else {
+            EtaMode::Finite
+        }
     }
 }
 
@@ -45,7 +49,8 @@ fn across(s_b: f32, xi2: f32, sigma: f32) -> C32 {
 pub fn eta_finite(frame: &SegmentFrame, x0: Vec2, xi: Vec2, sigma: f32) -> C32 {
     let (s_t, s_b) = frame.offset_from(x0);
     let (xi1, xi2) = xi_local(frame, xi);
-    let along = math::gauss_fourier_interval(s_t - frame.half_len, s_t + frame.half_len, sigma, xi1);
+    let along =
+        math::gauss_fourier_interval(s_t - frame.half_len, s_t + frame.half_len, sigma, xi1);
     across(s_b, xi2, sigma) * along
 }
 
@@ -53,7 +58,8 @@ pub fn eta_finite(frame: &SegmentFrame, x0: Vec2, xi: Vec2, sigma: f32) -> C32 {
 pub fn eta_infinite(frame: &SegmentFrame, x0: Vec2, xi: Vec2, sigma: f32) -> C32 {
     let (_, s_b) = frame.offset_from(x0);
     let (xi1, xi2) = xi_local(frame, xi);
-    let along = SQRT_TAU * sigma * math::exp(-2.0 * math::PI * math::PI * sigma * sigma * xi1 * xi1);
+    let along =
+        SQRT_TAU * sigma * math::exp(-2.0 * math::PI * math::PI * sigma * sigma * xi1 * xi1);
     math::cscale(across(s_b, xi2, sigma), along)
 }
 
