@@ -1,1 +1,14 @@
-//! scratchwave-conformance: see ARCHITECTURE.md. Filled in by its issue.
+//! # scratchwave-conformance
+//!
+//! The `scratchwave` command line (`run`, `table`, `footprint`) and the library behind it:
+//! strict JSON spec readers that name the offending field, `%.9g` output, and the
+//! conformance run that compares every backend with the committed high-precision
+//! references.
+
+pub mod error;
+pub mod format;
+pub mod json;
+pub mod run;
+pub mod spec;
+
+pub use error::SpecError;

@@ -10,7 +10,11 @@
 #![no_std]
 #![cfg_attr(target_arch = "spirv", allow(internal_features))]
 
+pub mod footprint;
+pub mod fresnel;
 pub mod math;
+pub mod scratch;
+pub mod table;
 
 pub use glam;
 pub use num_complex;

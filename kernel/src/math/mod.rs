@@ -1,8 +1,30 @@
 //! The one seam for transcendental functions.
 //!
-//! Every `exp`, `sin`, `sqrt`, … in the kernel goes through this module, so the CPU and
-//! the GPU see exactly the same code. On the CPU the calls go to `libm`; rust-gpu maps the
-//! same `libm` calls onto GLSL.std.450 instructions.
+//! Every `exp`, `sin`, `sqrt`, … in the kernel goes through this module, so the CPU and the
+//! GPU run the same source. On the CPU the calls go to `libm`; rust-gpu recognises the same
+//! `libm` calls and lowers them to GLSL.std.450 instructions. Functions rust-gpu lacks
+//! (`erf`, `hypot`, complex `sqrt`/`exp`, `Si`) are built here from those primitives.
+
+mod complex;
+mod faddeeva;
+mod gauss_interval;
+mod si;
+
+pub use complex::{C32, cis, cmul_i, cscale, csqrt, one_minus_cis};
+pub use faddeeva::faddeeva;
+pub use gauss_interval::{erf, gauss_fourier_interval, gauss_interval};
+pub use si::{si, si_velinov};
+
+/// π in `f32`.
+pub const PI: f32 = core::f32::consts::PI;
+/// 2π in `f32`.
+pub const TAU: f32 = core::f32::consts::TAU;
+/// √π.
+pub const SQRT_PI: f32 = 1.772_453_850_905_516;
+/// √2.
+pub const SQRT_2: f32 = core::f32::consts::SQRT_2;
+/// 1/√π.
+pub const FRAC_1_SQRT_PI: f32 = 0.564_189_583_547_756_3;
 
 pub mod portable;
 
@@ -13,4 +35,137 @@ pub fn exp(x: f32) -> f32 {
     return portable::exp(x);
     #[cfg(not(feature = "portable-math"))]
     libm::expf(x)
+}
+
+/// Natural logarithm.
+#[inline]
+pub fn ln(x: f32) -> f32 {
+    libm::logf(x)
+}
+
+/// Square root; `sqrt(x)` for `x < 0` is NaN, so callers clamp first (see [`sqrt0`]).
+#[inline]
+pub fn sqrt(x: f32) -> f32 {
+    libm::sqrtf(x)
+}
+
+/// `sqrt(max(x, 0))`: the square root of a quantity that is non-negative up to rounding.
+#[inline]
+pub fn sqrt0(x: f32) -> f32 {
+    libm::sqrtf(if x > 0.0 { x } else { 0.0 })
+}
+
+/// Sine.
+#[inline]
+pub fn sin(x: f32) -> f32 {
+    #[cfg(feature = "portable-math")]
+    return portable::sin(x);
+    #[cfg(not(feature = "portable-math"))]
+    libm::sinf(x)
+}
+
+/// Cosine.
+#[inline]
+pub fn cos(x: f32) -> f32 {
+    #[cfg(feature = "portable-math")]
+    return portable::cos(x);
+    #[cfg(not(feature = "portable-math"))]
+    libm::cosf(x)
+}
+
+/// Tangent.
+#[inline]
+pub fn tan(x: f32) -> f32 {
+    libm::tanf(x)
+}
+
+/// Hyperbolic tangent.
+#[inline]
+pub fn tanh(x: f32) -> f32 {
+    libm::tanhf(x)
+}
+
+/// Four-quadrant arctangent of `y/x`.
+#[inline]
+pub fn atan2(y: f32, x: f32) -> f32 {
+    libm::atan2f(y, x)
+}
+
+/// Arctangent.
+#[inline]
+pub fn atan(x: f32) -> f32 {
+    libm::atanf(x)
+}
+
+/// Arcsine of `x` clamped to [-1, 1] (no NaN for arguments just outside by rounding).
+#[inline]
+pub fn asin(x: f32) -> f32 {
+    libm::asinf(clamp(x, -1.0, 1.0))
+}
+
+/// Arccosine of `x` clamped to [-1, 1].
+#[inline]
+pub fn acos(x: f32) -> f32 {
+    libm::acosf(clamp(x, -1.0, 1.0))
+}
+
+/// `x^y`.
+#[inline]
+pub fn pow(x: f32, y: f32) -> f32 {
+    libm::powf(x, y)
+}
+
+/// Absolute value.
+#[inline]
+pub fn abs(x: f32) -> f32 {
+    libm::fabsf(x)
+}
+
+/// Largest integer not greater than `x`.
+#[inline]
+pub fn floor(x: f32) -> f32 {
+    libm::floorf(x)
+}
+
+/// `x` clamped to `[lo, hi]`; NaN maps to `lo`.
+#[inline]
+pub fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
+    if x > hi {
+        hi
+    } else if x >= lo {
+        x
+    } else {
+        lo
+    }
+}
+
+/// `min(a, b)` that returns the other operand when one is NaN.
+#[inline]
+pub fn min(a: f32, b: f32) -> f32 {
+    if a < b || b.is_nan() { a } else { b }
+}
+
+/// `max(a, b)` that returns the other operand when one is NaN.
+#[inline]
+pub fn max(a: f32, b: f32) -> f32 {
+    if a > b || b.is_nan() { a } else { b }
+}
+
+/// +1 for `x >= 0`, −1 otherwise.
+#[inline]
+pub fn sign(x: f32) -> f32 {
+    if x >= 0.0 { 1.0 } else { -1.0 }
+}
+
+/// `sinc(x) = sin(x)/x`, with the removable singularity at 0 evaluated by its Taylor series
+/// (no cancellation, exactly 1 at 0).
+#[inline]
+pub fn sinc(x: f32) -> f32 {
+    let ax = abs(x);
+    if ax < 1.0e-2 {
+        let x2 = x * x;
+        1.0 - x2 * (1.0 / 6.0) * (1.0 - x2 * (1.0 / 20.0))
+    } else {
+        sin(x) / x
+    }
 }

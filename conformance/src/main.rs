@@ -1,0 +1,203 @@
+//! `scratchwave`: BRDF tables, footprint tables and the conformance run.
+//!
+//! Exit codes: 0 success, 1 a conformance disagreement, 2 bad input (the message names the
+//! file or field; nothing is written to stdout).
+
+use scratchwave_conformance::error::SpecError;
+use scratchwave_conformance::format::g9;
+use scratchwave_conformance::{json, run, spec};
+use scratchwave_cpu::{Backend, evaluate_table, footprint_table};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+const USAGE: &str = "usage:
+  scratchwave run [--cases DIR] [--out DIR]      conformance run over the committed cases
+  scratchwave table SPEC.json [--backend cpu|simd]
+  scratchwave footprint SPEC.json [--backend cpu|simd]";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match dispatch(&args) {
+        Ok(code) => code,
+        Err(Failure::Usage(msg)) => {
+            eprintln!("error: {msg}\n{USAGE}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Spec(e)) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+enum Failure {
+    Usage(String),
+    Spec(SpecError),
+}
+
+impl From<SpecError> for Failure {
+    fn from(e: SpecError) -> Self {
+        Failure::Spec(e)
+    }
+}
+
+/// Positional arguments and `--flag value` pairs.
+type Parsed<'a> = (Vec<&'a str>, Vec<(&'a str, &'a str)>);
+
+/// Splits `args` into positionals and `--flag value` pairs, accepting only `allowed` flags.
+fn parse_flags<'a>(args: &'a [String], allowed: &[&str]) -> Result<Parsed<'a>, Failure> {
+    let (mut pos, mut flags) = (Vec::new(), Vec::new());
+    let mut i = 0;
+    while i < args.len() {
+        let a = args[i].as_str();
+        if let Some(f) = a.strip_prefix("--") {
+            if !allowed.contains(&f) {
+                return Err(Failure::Usage(format!("unknown option --{f}")));
+            }
+            let v = args
+                .get(i + 1)
+                .ok_or_else(|| Failure::Usage(format!("--{f} needs a value")))?;
+            flags.push((f, v.as_str()));
+            i += 2;
+        } else {
+            pos.push(a);
+            i += 1;
+        }
+    }
+    Ok((pos, flags))
+}
+
+fn backend(flags: &[(&str, &str)]) -> Result<Backend, Failure> {
+    match flags
+        .iter()
+        .rev()
+        .find(|(f, _)| *f == "backend")
+        .map(|(_, v)| *v)
+    {
+        None | Some("cpu") => Ok(Backend::Scalar),
+        Some("simd") => Ok(Backend::Simd),
+        Some(other) => Err(Failure::Usage(format!(
+            "unknown backend {other:?} (cpu, simd)"
+        ))),
+    }
+}
+
+fn read_json(path: &str) -> Result<serde_json::Value, SpecError> {
+    let text = std::fs::read_to_string(path).map_err(|e| SpecError::Io {
+        path: path.into(),
+        msg: e.to_string(),
+    })?;
+    json::parse(&text, path)
+}
+
+fn one_file<'a>(pos: &[&'a str], cmd: &str) -> Result<&'a str, Failure> {
+    match pos {
+        [f] => Ok(f),
+        _ => Err(Failure::Usage(format!("{cmd} takes exactly one SPEC.json"))),
+    }
+}
+
+fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
+    let Some(cmd) = args.first() else {
+        return Err(Failure::Usage("no command".into()));
+    };
+    let rest = &args[1..];
+    match cmd.as_str() {
+        "table" => {
+            let (pos, flags) = parse_flags(rest, &["backend"])?;
+            let file = one_file(&pos, "table")?;
+            let b = backend(&flags)?;
+            let s = spec::table_spec(&read_json(file)?)?;
+            let values = evaluate_table(b, &s.params, &s.scratches, &s.queries);
+            let mut out = String::with_capacity(values.len() * 16);
+            for v in values {
+                out += &g9(f64::from(v));
+                out.push('\n');
+            }
+            print!("{out}");
+            Ok(ExitCode::SUCCESS)
+        }
+        "footprint" => {
+            let (pos, flags) = parse_flags(rest, &["backend"])?;
+            let file = one_file(&pos, "footprint")?;
+            let b = backend(&flags)?;
+            let s = spec::footprint_spec(&read_json(file)?)?;
+            let rows = footprint_table(b, s.sigma_um, &s.queries);
+            let mut out = String::from("eq15,eq16,accurate,rho_p\n");
+            for r in rows {
+                let f = |v: f32| g9(f64::from(v));
+                out += &format!(
+                    "{},{},{},{}\n",
+                    f(r.eq15),
+                    f(r.eq16),
+                    f(r.accurate),
+                    f(r.rho_p)
+                );
+            }
+            print!("{out}");
+            Ok(ExitCode::SUCCESS)
+        }
+        "run" => {
+            let (pos, flags) = parse_flags(rest, &["cases", "out"])?;
+            if !pos.is_empty() {
+                return Err(Failure::Usage("run takes no positional arguments".into()));
+            }
+            let get = |k: &str| {
+                flags
+                    .iter()
+                    .rev()
+                    .find(|(f, _)| *f == k)
+                    .map(|(_, v)| PathBuf::from(v))
+            };
+            let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+            let cases_dir = get("cases").unwrap_or_else(|| root.join("reference/golden/tables"));
+            let out_dir = get("out").unwrap_or_else(|| root.join("target/conformance"));
+            conformance_run(&cases_dir, &out_dir)
+        }
+        "-h" | "--help" | "help" => {
+            println!("{USAGE}");
+            Ok(ExitCode::SUCCESS)
+        }
+        other => Err(Failure::Usage(format!("unknown command {other:?}"))),
+    }
+}
+
+fn conformance_run(cases_dir: &Path, out_dir: &Path) -> Result<ExitCode, Failure> {
+    let cases = run::load_cases(cases_dir)?;
+    if cases.is_empty() {
+        return Err(Failure::Spec(SpecError::Io {
+            path: cases_dir.display().to_string(),
+            msg: "no *.json cases".into(),
+        }));
+    }
+    let mut reports = Vec::new();
+    for (i, c) in cases.iter().enumerate() {
+        eprintln!("[{}/{}] {} — {}", i + 1, cases.len(), c.name, c.description);
+        reports.push(run::run_case(c)?);
+    }
+    let md = run::markdown(&reports);
+    println!("{md}");
+    let failed = reports
+        .iter()
+        .flat_map(|r| &r.rows)
+        .filter(|r| !r.3)
+        .count();
+    let total: usize = reports.iter().map(|r| r.rows.len()).sum();
+    println!("conformance: {} passed, {} failed", total - failed, failed);
+    let io = |e: std::io::Error| {
+        Failure::Spec(SpecError::Io {
+            path: out_dir.display().to_string(),
+            msg: e.to_string(),
+        })
+    };
+    std::fs::create_dir_all(out_dir).map_err(io)?;
+    std::fs::write(out_dir.join("report.md"), &md).map_err(io)?;
+    let js = serde_json::to_string_pretty(&run::to_json(&reports)).unwrap_or_default();
+    std::fs::write(out_dir.join("report.json"), js).map_err(io)?;
+    eprintln!("wrote {}/report.{{md,json}}", out_dir.display());
+    Ok(if failed == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}

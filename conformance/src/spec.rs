@@ -1,0 +1,243 @@
+//! Table and footprint specs (JSON) → kernel records. The formats are documented in the
+//! README; every rejection names the field.
+
+use crate::error::SpecError;
+use crate::json::{self, Obj};
+use scratchwave_kernel::footprint::Ellipse;
+use scratchwave_kernel::scratch::{Profile, Scratch};
+use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery};
+use serde_json::Value;
+
+/// Default coherence σ (µm): δc = 6σ = 60 µm (Werner §4.1).
+pub const DEFAULT_SIGMA_UM: f32 = 10.0;
+
+/// A parsed `scratchwave table` spec.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TableSpec {
+    /// Model and options.
+    pub params: TableParams,
+    /// Scratches (µm).
+    pub scratches: Vec<Scratch>,
+    /// Queries in input order.
+    pub queries: Vec<TableQuery>,
+}
+
+/// A parsed `scratchwave footprint` spec.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FootprintSpec {
+    /// Coherence σ (µm).
+    pub sigma_um: f32,
+    /// `(scratch, ellipse)` per query.
+    pub queries: Vec<(Scratch, Ellipse)>,
+}
+
+/// Reads a table spec from a JSON value.
+pub fn table_spec(v: &Value) -> Result<TableSpec, SpecError> {
+    let top = Obj::new(
+        v,
+        "",
+        &[
+            "model",
+            "material",
+            "sigma_um",
+            "scratches",
+            "options",
+            "queries",
+        ],
+    )?;
+    let model = match top.choice("model", &["werner", "werner_blended", "velinov"])? {
+        "werner_blended" => Model::WernerBlended,
+        "velinov" => Model::Velinov,
+        _ => Model::Werner,
+    };
+    let material = match top.get("material") {
+        Some(m) => material(m, "material")?,
+        None => Material::constant(1.0),
+    };
+    let sigma_um = sigma(&top)?;
+    let scratches = scratches(&top)?;
+    let mut params = TableParams {
+        model: model as u32,
+        sigma_um,
+        ..TableParams::default()
+    };
+    if let Some(o) = top.get("options") {
+        let o = Obj::new(o, "options", &["eta", "depth_term", "base"])?;
+        let velinov_only = |key: &str| -> Result<(), SpecError> {
+            if o.get(key).is_some() && model != Model::Velinov {
+                return Err(SpecError::field(
+                    o.path_of(key),
+                    "only meaningful for model \"velinov\"",
+                ));
+            }
+            Ok(())
+        };
+        velinov_only("eta")?;
+        velinov_only("base")?;
+        params.eta = u32::from(o.opt_choice("eta", &["finite", "infinite"])? == Some("infinite"));
+        params.depth_term =
+            u32::from(o.opt_choice("depth_term", &["small_angle", "exact"])? == Some("exact"));
+        params.base_gaussian =
+            u32::from(o.opt_choice("base", &["none", "gaussian"])? == Some("gaussian"));
+    }
+    let mut queries = Vec::new();
+    for (i, q) in top.arr("queries")?.iter().enumerate() {
+        let path = format!("queries[{i}]");
+        let q = Obj::new(q, &path, &["wi", "wo", "lambda_nm", "x", "material"])?;
+        let wi = direction(&q, "wi")?;
+        let wo = direction(&q, "wo")?;
+        let lambda_nm = json::positive(q.num("lambda_nm")?, &q.path_of("lambda_nm"), false)?;
+        let x = point(&q, "x")?;
+        let m = match q.get("material") {
+            Some(m) => self::material(m, &q.path_of("material"))?,
+            None => material,
+        };
+        queries.push(TableQuery {
+            wi,
+            lambda_nm,
+            wo,
+            x,
+            material: m,
+            ..TableQuery::default()
+        });
+    }
+    Ok(TableSpec {
+        params,
+        scratches,
+        queries,
+    })
+}
+
+/// Reads a footprint spec from a JSON value.
+pub fn footprint_spec(v: &Value) -> Result<FootprintSpec, SpecError> {
+    let top = Obj::new(v, "", &["sigma_um", "scratches", "queries"])?;
+    let sigma_um = sigma(&top)?;
+    let scratches = scratches(&top)?;
+    let mut queries = Vec::new();
+    for (i, q) in top.arr("queries")?.iter().enumerate() {
+        let path = format!("queries[{i}]");
+        let q = Obj::new(q, &path, &["scratch", "ellipse"])?;
+        let idx = q.num("scratch")?;
+        let scratch = if idx >= 0.0 && idx.fract() == 0.0 && (idx as usize) < scratches.len() {
+            scratches[idx as usize]
+        } else {
+            return Err(SpecError::field(
+                q.path_of("scratch"),
+                format!(
+                    "must be an index into scratches (0..{}), got {idx}",
+                    scratches.len()
+                ),
+            ));
+        };
+        let e = Obj::new(
+            q.req("ellipse")?,
+            &q.path_of("ellipse"),
+            &["center", "angle_rad", "a1", "a2"],
+        )?;
+        let ellipse = Ellipse {
+            center: point(&e, "center")?,
+            angle_rad: json::to_f32(e.num("angle_rad")?, &e.path_of("angle_rad"))?,
+            a1: json::positive(e.num("a1")?, &e.path_of("a1"), false)?,
+            a2: json::positive(e.num("a2")?, &e.path_of("a2"), false)?,
+            ..Ellipse::default()
+        };
+        queries.push((scratch, ellipse));
+    }
+    Ok(FootprintSpec { sigma_um, queries })
+}
+
+fn sigma(top: &Obj) -> Result<f32, SpecError> {
+    match top.opt_num("sigma_um")? {
+        Some(s) => json::positive(s, &top.path_of("sigma_um"), false),
+        None => Ok(DEFAULT_SIGMA_UM),
+    }
+}
+
+fn scratches(top: &Obj) -> Result<Vec<Scratch>, SpecError> {
+    let mut out = Vec::new();
+    for (i, s) in top.arr("scratches")?.iter().enumerate() {
+        let s = Obj::new(
+            s,
+            &format!("scratches[{i}]"),
+            &["p0", "p1", "width", "depth", "profile"],
+        )?;
+        let profile = match s.opt_choice("profile", &["rect", "triangle"])? {
+            Some("triangle") => Profile::Triangle,
+            _ => Profile::Rect,
+        };
+        out.push(Scratch {
+            p0: point(&s, "p0")?,
+            p1: point(&s, "p1")?,
+            width: json::positive(s.num("width")?, &s.path_of("width"), true)?,
+            depth: json::positive(s.num("depth")?, &s.path_of("depth"), true)?,
+            profile: profile as u32,
+            pad: 0,
+        });
+    }
+    Ok(out)
+}
+
+fn point(o: &Obj, key: &str) -> Result<[f32; 2], SpecError> {
+    let p = o.vec::<2>(key)?;
+    let path = o.path_of(key);
+    Ok([
+        json::to_f32(p[0], &format!("{path}[0]"))?,
+        json::to_f32(p[1], &format!("{path}[1]"))?,
+    ])
+}
+
+/// A direction, normalised; zero length is an error (z ≤ 0 is allowed and evaluates to 0).
+fn direction(o: &Obj, key: &str) -> Result<[f32; 3], SpecError> {
+    let d = o.vec::<3>(key)?;
+    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    if !(len > 0.0 && len.is_finite()) {
+        return Err(SpecError::field(
+            o.path_of(key),
+            "direction must have non-zero, finite length",
+        ));
+    }
+    Ok([
+        (d[0] / len) as f32,
+        (d[1] / len) as f32,
+        (d[2] / len) as f32,
+    ])
+}
+
+fn material(v: &Value, path: &str) -> Result<Material, SpecError> {
+    let m = Obj::new(v, path, &["F", "ior", "fresnel_angle"])?;
+    match (m.get("F"), m.get("ior")) {
+        (Some(_), Some(_)) => Err(SpecError::field(
+            path,
+            "give either \"F\" or \"ior\", not both",
+        )),
+        (Some(_), None) => {
+            if m.get("fresnel_angle").is_some() {
+                return Err(SpecError::field(
+                    m.path_of("fresnel_angle"),
+                    "only meaningful with \"ior\"",
+                ));
+            }
+            let f = m.num("F")?;
+            if !(0.0..=1.0).contains(&f) {
+                return Err(SpecError::field(
+                    m.path_of("F"),
+                    format!("must be in [0, 1], got {f}"),
+                ));
+            }
+            Ok(Material::constant(f as f32))
+        }
+        (None, Some(_)) => {
+            let [n, k] = m.vec::<2>("ior")?;
+            let ior_path = m.path_of("ior");
+            let n = json::positive(n, &format!("{ior_path}[0]"), false)?;
+            let k = json::positive(k, &format!("{ior_path}[1]"), true)?;
+            let angle = match m.opt_choice("fresnel_angle", &["theta_d", "theta_i", "normal"])? {
+                Some("theta_i") => FresnelAngle::ThetaI,
+                Some("normal") => FresnelAngle::Normal,
+                _ => FresnelAngle::ThetaD,
+            };
+            Ok(Material::ior(n, k, angle))
+        }
+        (None, None) => Err(SpecError::field(path, "needs \"F\" or \"ior\"")),
+    }
+}

@@ -1,0 +1,239 @@
+//! Pixel-footprint averages of a scratch's spatial term (Velinov 2018 §3.2–3.3).
+//!
+//! The footprint is an ellipse (centre, angle of the `a1` semi-axis, semi-axes `a1`, `a2`),
+//! `A_P = π a1 a2`. The quantity averaged is `|η_s(x)|²`, the finite-segment spatial phase
+//! of [`crate::scratch::eta_finite`] at `ξ = 0` (for an infinite scratch this is Velinov
+//! Eq. 10's `2 A_C exp(−s_b²/σ²)`), and the area density ρc.
+//!
+//! * [`eta_p_eq15`]: Velinov Eq. 15, `2σ³√π l / (a1 a2)` (large footprints only);
+//! * [`eta_p_eq16`]: Eq. 16 with the π its second term lacks restored, so that it tends to
+//!   `|η_s(centre)|²` as `A_P → 0`;
+//! * [`eta_p_accurate`]: this crate's method, accurate at every footprint size: the integral
+//!   across the scratch is done in closed form (an `erf` difference) and the one along it by
+//!   panelled Gauss–Legendre in `θ` with `u = u_c + U sin θ` (smooth at the ellipse's ends),
+//!   panels split at the segment ends and where the chords cross the scratch line;
+//! * [`rho_p_eq18`]: Eq. 18 without its spurious factor 2 (`W l / A_P`), and
+//!   [`rho_p_accurate`] by the same quadrature as `eta_p_accurate`.
+
+use crate::math;
+use crate::scratch::Scratch;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec2;
+
+/// Elliptic pixel footprint on the tangent plane. GPU-visible: 32 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct Ellipse {
+    /// Centre (µm).
+    pub center: [f32; 2],
+    /// Angle of the `a1` semi-axis against +x (radians).
+    pub angle_rad: f32,
+    /// First semi-axis (µm).
+    pub a1: f32,
+    /// Second semi-axis (µm).
+    pub a2: f32,
+    /// Explicit padding.
+    pub pad: [f32; 3],
+}
+
+const _: () = assert!(core::mem::size_of::<Ellipse>() == 32);
+
+impl Ellipse {
+    /// `A_P = π a1 a2`.
+    #[inline]
+    pub fn area(&self) -> f32 {
+        math::PI * self.a1 * self.a2
+    }
+}
+
+/// Length of the segment inside the ellipse (`l_contained`, Velinov Eq. 14): the segment is
+/// mapped to the ellipse's unit-circle frame and clipped there.
+pub fn contained_length(s: &Scratch, e: &Ellipse) -> f32 {
+    let (sn, cs) = (math::sin(e.angle_rad), math::cos(e.angle_rad));
+    let c = Vec2::from_array(e.center);
+    let to_unit = |p: Vec2| {
+        let d = p - c;
+        Vec2::new((d.x * cs + d.y * sn) / e.a1, (-d.x * sn + d.y * cs) / e.a2)
+    };
+    let p0 = Vec2::from_array(s.p0);
+    let p1 = Vec2::from_array(s.p1);
+    let len = (p1 - p0).length();
+    if !(len > 0.0 && e.a1 > 0.0 && e.a2 > 0.0) {
+        return 0.0;
+    }
+    let q0 = to_unit(p0);
+    let d = to_unit(p1) - q0;
+    // |q0 + t d|² = 1 → a t² + 2 b t + c = 0
+    let a = d.length_squared();
+    let b = q0.dot(d);
+    let cc = q0.length_squared() - 1.0;
+    let disc = b * b - a * cc;
+    if !(disc > 0.0) || !(a > 0.0) {
+        return 0.0;
+    }
+    let r = math::sqrt(disc);
+    let t0 = math::max((-b - r) / a, 0.0);
+    let t1 = math::min((-b + r) / a, 1.0);
+    if t1 > t0 { (t1 - t0) * len } else { 0.0 }
+}
+
+/// Perpendicular distance of the ellipse centre from the scratch's line (`s_b`).
+#[inline]
+fn centre_offset(s: &Scratch, e: &Ellipse) -> f32 {
+    match s.frame() {
+        Some(f) => (Vec2::from_array(e.center) - f.center).dot(f.bitangent),
+        None => 0.0,
+    }
+}
+
+/// Velinov Eq. 15: `(1/A_P)∫|η_s|² ≈ 2σ³√π l / (a1 a2)`.
+pub fn eta_p_eq15(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
+    let l = contained_length(s, e);
+    2.0 * sigma * sigma * sigma * math::SQRT_PI * l / (e.a1 * e.a2)
+}
+
+/// Velinov Eq. 16 with the missing π restored:
+/// `(2σ²/A_P) [α σ π^{3/2} l + (1 − α) π A_P exp(−s_b²/σ²)]`, `α = min(A_P/(2A_C), 1)`.
+pub fn eta_p_eq16(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
+    let l = contained_length(s, e);
+    let ap = e.area();
+    let ac = math::PI * sigma * sigma;
+    let alpha = math::min(0.5 * ap / ac, 1.0);
+    let sb = centre_offset(s, e);
+    let pi32 = math::PI * math::SQRT_PI;
+    2.0 * sigma * sigma / ap
+        * (alpha * sigma * pi32 * l
+            + (1.0 - alpha) * math::PI * ap * math::exp(-sb * sb / (sigma * sigma)))
+}
+
+/// Velinov Eq. 18 without its factor 2: `ρ_P ≈ W l / A_P`.
+pub fn rho_p_eq18(s: &Scratch, e: &Ellipse) -> f32 {
+    s.width * contained_length(s, e) / e.area()
+}
+
+/// `(1/A_P) ∫_P |η_s(x)|² dx`, accurate for every footprint size (see the module docs).
+pub fn eta_p_accurate(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
+    footprint_integral(s, e, sigma, true)
+}
+
+/// `(1/A_P) ∫_P ρc(x) dx` for one scratch, accurate for every footprint size.
+pub fn rho_p_accurate(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
+    footprint_integral(s, e, sigma, false) * s.width / (math::TAU * sigma * sigma)
+}
+
+/// Gauss–Legendre 8-point nodes/weights on [−1, 1] (positive half).
+const GL_X: [f32; 4] = [0.183_434_64, 0.525_532_4, 0.796_666_5, 0.960_289_86];
+/// Weights for [`GL_X`].
+const GL_W: [f32; 4] = [0.362_683_8, 0.313_706_64, 0.222_381_03, 0.101_228_54];
+/// Breakpoint offsets (in σ) around each feature along the scratch.
+const OFFSETS: [f32; 5] = [-3.0, -1.5, 0.0, 1.5, 3.0];
+/// Maximum number of panel boundaries: 3 features × 5 offsets + the 2 ellipse ends.
+const MAX_BREAKS: usize = 17;
+
+/// `(1/A_P)∫_P |η_s|²` (`squared`) or `(1/A_P)∫_P exp(−v²/(2σ²)) g(u)` (not squared),
+/// with `u, v` the scratch-frame coordinates of `x` and `g(u) = ∫_seg exp(−(s−u)²/(2σ²)) ds`.
+fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f32 {
+    let Some(frame) = s.frame() else { return 0.0 };
+    if !(e.a1 > 0.0 && e.a2 > 0.0 && sigma > 0.0) {
+        return 0.0;
+    }
+    // Ellipse in the scratch frame: centre (eu, ev), quadratic form [[qa, qb], [qb, qc]] =
+    // R diag(1/a1², 1/a2²) Rᵀ; only qb, qc are needed for chords at fixed u.
+    let d = Vec2::from_array(e.center) - frame.center;
+    let (eu, ev) = (d.dot(frame.tangent), d.dot(frame.bitangent));
+    let phi = e.angle_rad - math::atan2(frame.tangent.y, frame.tangent.x);
+    let (sp, cp) = (math::sin(phi), math::cos(phi));
+    let (i1, i2) = (1.0 / (e.a1 * e.a1), 1.0 / (e.a2 * e.a2));
+    let qb = cp * sp * (i1 - i2);
+    let qc = sp * sp * i1 + cp * cp * i2;
+    let ab = e.a1 * e.a2;
+    let sqrt_qc = math::sqrt(qc);
+    // Half extent of the ellipse along the scratch, and chord half-length cos θ / √qc.
+    let half_u = ab * sqrt_qc;
+    // Panel boundaries in θ (u = eu + half_u sin θ).
+    let mut br = [0.0f32; MAX_BREAKS];
+    let mut n = 0;
+    br[n] = -0.5 * math::PI;
+    n += 1;
+    br[n] = 0.5 * math::PI;
+    n += 1;
+    let features = [
+        -frame.half_len,
+        frame.half_len,
+        chord_crossing(eu, ev, qb, qc),
+    ];
+    let mut f = 0;
+    while f < 3 {
+        let mut o = 0;
+        while o < 5 {
+            let u = features[f] + OFFSETS[o] * sigma;
+            let r = (u - eu) / half_u;
+            if r > -1.0 && r < 1.0 && n < MAX_BREAKS {
+                br[n] = math::asin(r);
+                n += 1;
+            }
+            o += 1;
+        }
+        f += 1;
+    }
+    sort(&mut br, n);
+    let mut total = 0.0;
+    let mut p = 0;
+    while p + 1 < n {
+        let (t0, t1) = (br[p], br[p + 1]);
+        let (half, mid) = (0.5 * (t1 - t0), 0.5 * (t0 + t1));
+        let mut i = 0;
+        while i < 8 {
+            let x = if i < 4 { -GL_X[i] } else { GL_X[i - 4] };
+            let w = GL_W[if i < 4 { i } else { i - 4 }];
+            let th = mid + half * x;
+            let (st, ct) = (math::sin(th), math::cos(th));
+            let du = half_u * st;
+            let u = eu + du;
+            // chord across the scratch at this u: v = ev − (qb/qc) du ± half_v
+            let half_v = ct / sqrt_qc;
+            let vc = ev - qb / qc * du;
+            let g = math::gauss_interval(-frame.half_len - u, frame.half_len - u, sigma);
+            let inner = if squared {
+                g * g * math::gauss_interval(vc - half_v, vc + half_v, sigma * FRAC_1_SQRT_2)
+            } else {
+                g * math::gauss_interval(vc - half_v, vc + half_v, sigma)
+            };
+            total += w * half * inner * half_u * ct;
+            i += 1;
+        }
+        p += 1;
+    }
+    total / e.area()
+}
+
+/// 1/√2.
+const FRAC_1_SQRT_2: f32 = core::f32::consts::FRAC_1_SQRT_2;
+
+/// The `u` where the chords' midpoints cross the scratch line (`v = 0`), or the ellipse
+/// centre's `u` when the chords run parallel to the scratch line.
+#[inline]
+fn chord_crossing(eu: f32, ev: f32, qb: f32, qc: f32) -> f32 {
+    if math::abs(qb) > 1.0e-12 * qc {
+        eu + ev * qc / qb
+    } else {
+        eu
+    }
+}
+
+/// Insertion sort of the first `n` entries (n ≤ 17; no recursion for SPIR-V).
+// Slice methods such as `swap` are avoided in the kernel (rust-gpu limits, DESIGN.md).
+#[allow(clippy::manual_swap)]
+fn sort(a: &mut [f32; MAX_BREAKS], n: usize) {
+    let mut i = 1;
+    while i < n && i < MAX_BREAKS {
+        let mut j = i;
+        while j > 0 && a[j - 1] > a[j] {
+            let t = a[j - 1];
+            a[j - 1] = a[j];
+            a[j] = t;
+            j -= 1;
+        }
+        i += 1;
+    }
+}

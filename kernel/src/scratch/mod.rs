@@ -1,0 +1,24 @@
+//! Werner et al. 2017, "Scratch iridescence": the coherent wave-optical SVBRDF of
+//! line-segment scratches, and the pieces Velinov et al. 2018 reuse.
+//!
+//! | file | what |
+//! |---|---|
+//! | `segment` | the `Pod` scratch record and its frame (tangent, bitangent, centre) |
+//! | `profile` | mask and groove-profile Fourier transforms (Werner Eqs. 14, 26–31) |
+//! | `spatial_phase` | η, finite (App. A) and infinite (Velinov Eq. 8) |
+//! | `set` | "every scratch near x0": brute force or the flattened BVH |
+//! | `response` | base response B (Eq. 16), scratch response S (Eq. 17), ρc |
+
+pub mod profile;
+pub mod response;
+pub mod segment;
+pub mod set;
+pub mod spatial_phase;
+
+pub use profile::{DepthTerm, Profile};
+pub use response::{
+    ResponseInputs, ScratchTerms, base_response, scratch_area_density, scratch_response,
+};
+pub use segment::{Scratch, SegmentFrame};
+pub use set::{ScratchSet, ScratchSlice};
+pub use spatial_phase::{EtaMode, eta_finite, eta_infinite};

@@ -1,0 +1,96 @@
+//! Base and scratch responses of the coherence window around `x0` (Werner 2017 Eqs. 15–17)
+//! and the scratch area density ρc (Werner §5, Velinov Eq. 17 corrected).
+
+use super::profile::{Profile, mask_minus_profile};
+use super::segment::Scratch;
+use super::set::ScratchSet;
+use super::spatial_phase::{EtaMode, eta, xi_local};
+use crate::math::{self, C32};
+use glam::Vec2;
+
+/// Radius, in units of σ, beyond which a scratch's contribution is dropped: its amplitude
+/// weight is at most `exp(−6²/2) = 1.5e-8`, below `f32` resolution of a nearby scratch.
+pub const CUTOFF_SIGMAS: f32 = 6.0;
+
+/// Base response `B(ξ) = 2πσ² exp(−2π²σ²|ξ|²)` (Werner Eq. 16): the Fourier transform of
+/// the Gaussian coherence window.
+#[inline]
+pub fn base_response(xi: Vec2, sigma: f32) -> f32 {
+    let s2 = sigma * sigma;
+    math::TAU * s2 * math::exp(-2.0 * math::PI * math::PI * s2 * xi.length_squared())
+}
+
+/// Everything the models need from the scratches around one shading point, gathered in a
+/// single pass.
+#[derive(Clone, Copy, Debug)]
+pub struct ScratchTerms {
+    /// Coherent scratch response `S = Σ (M_k − P_k) η_k` (Werner Eq. 17), µm².
+    pub coherent: C32,
+    /// Incoherent sum `Σ |S_k|²` (Velinov Eq. 7), µm⁴.
+    pub incoherent: f32,
+    /// Scratch area density ρc at `x0` (dimensionless; 1 for a fully scratched window).
+    pub area_density: f32,
+}
+
+/// Per-query inputs of the scratch response.
+#[derive(Clone, Copy, Debug)]
+pub struct ResponseInputs {
+    /// Shading point (µm).
+    pub x0: Vec2,
+    /// `(wi + wo)_xy / λ` (1/µm).
+    pub xi: Vec2,
+    /// Effective `γi + γo` for the depth phase (see [`super::DepthTerm::gamma`]).
+    pub gamma: f32,
+    /// Wavelength (µm).
+    pub lambda: f32,
+    /// Coherence σ (µm).
+    pub sigma: f32,
+    /// Finite or infinite spatial phase.
+    pub eta: EtaMode,
+}
+
+/// Sums the scratch terms over every scratch within [`CUTOFF_SIGMAS`]·σ of `x0`.
+pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTerms {
+    let mut terms = ScratchTerms {
+        coherent: C32::new(0.0, 0.0),
+        incoherent: 0.0,
+        area_density: 0.0,
+    };
+    let sigma = q.sigma;
+    set.for_each_near(q.x0, CUTOFF_SIGMAS * sigma, |s: Scratch| {
+        if let Some(frame) = s.frame() {
+            let (_, xi2) = xi_local(&frame, q.xi);
+            let profile = Profile::from_u32(s.profile);
+            let m_p = mask_minus_profile(profile, s.width, s.depth, q.gamma, q.lambda, xi2);
+            let sk = m_p * eta(q.eta, &frame, q.x0, q.xi, sigma);
+            terms.coherent += sk;
+            terms.incoherent += sk.norm_sqr();
+            terms.area_density += area_density_of(&frame, s.width, q.x0, sigma);
+        }
+    });
+    terms
+}
+
+/// One segment's share of ρc: `W ∫ G ds / (2πσ²)`.
+#[inline]
+fn area_density_of(frame: &super::SegmentFrame, width: f32, x0: Vec2, sigma: f32) -> f32 {
+    let (s_t, s_b) = frame.offset_from(x0);
+    let along = math::gauss_interval(s_t - frame.half_len, s_t + frame.half_len, sigma);
+    width * math::exp(-0.5 * s_b * s_b / (sigma * sigma)) * along / (math::TAU * sigma * sigma)
+}
+
+/// Scratch area density ρc(x0) = `(1/(2πσ²)) Σ W_k ∫_k G ds`.
+///
+/// Velinov Eq. 17 divides by `A_C = πσ²` instead of by `∫G dA = 2πσ²` and so reports 2 for
+/// a fully scratched window; this is the corrected normalisation (1 when fully covered).
+/// Werner Eq. 9's mask–scratch decomposition counts overlapping scratches twice, and so
+/// does ρc: it can exceed 1 where scratches cross (a documented model limitation).
+pub fn scratch_area_density<S: ScratchSet>(set: &S, x0: Vec2, sigma: f32) -> f32 {
+    let mut rho = 0.0;
+    set.for_each_near(x0, CUTOFF_SIGMAS * sigma, |s: Scratch| {
+        if let Some(frame) = s.frame() {
+            rho += area_density_of(&frame, s.width, x0, sigma);
+        }
+    });
+    rho
+}
