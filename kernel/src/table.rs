@@ -16,6 +16,9 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 
 /// Which model a table evaluates.
+// `repr(u32)`: with three variants the default tag is a `u8`, which SPIR-V only has with
+// the Int8 capability (rust-gpu rejects the table entry points without it).
+#[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Model {
     /// Coherent base + scratches (Werner Eq. 15).
