@@ -27,8 +27,9 @@ impl<'a> Input<'a> {
     }
 
     /// A buffer every invocation may read whole (parameters, scratch segments, BVH nodes).
-    /// An empty slice is bound as 16 zero bytes, since Vulkan cannot bind nothing: entry
-    /// points must take counts from their parameters, not from `len()` of such a buffer.
+    /// An empty slice is bound as 4 zero bytes, since Vulkan cannot bind nothing: `len()`
+    /// is then 0 in the shader for elements larger than 4 bytes (scratches, BVH nodes);
+    /// for 4-byte elements an entry point must take the count from its parameters.
     pub fn whole<T: Pod>(data: &'a [T]) -> Self {
         Self {
             bytes: bytemuck::cast_slice(data),
@@ -99,7 +100,7 @@ impl Gpu {
             .enumerate()
             .map(|(i, input)| {
                 let contents: &[u8] = if input.bytes.is_empty() {
-                    &[0; 16]
+                    &[0; 4]
                 } else {
                     input.bytes
                 };
@@ -188,14 +189,20 @@ impl Gpu {
             let _ = sender.send(result);
         });
         self.wait("reading back")?;
-        let mapped = receiver.recv().ok().and_then(Result::ok);
-        if mapped.is_none() {
-            return Err(SpirvError::Gpu {
-                during: format!("mapping the output of `{entry}`"),
-                message: "the readback buffer could not be mapped".into(),
-            });
+        let mapping_failed = |message: String| SpirvError::Gpu {
+            during: format!("mapping the output of `{entry}`"),
+            message,
+        };
+        match receiver.recv() {
+            Ok(Ok(())) => {}
+            Ok(Err(error)) => return Err(mapping_failed(error.to_string())),
+            Err(_) => return Err(mapping_failed("the map callback never ran".into())),
         }
-        let output: Vec<O> = bytemuck::pod_collect_to_vec(&staging.get_mapped_range(..));
+        let view = staging
+            .get_mapped_range(..)
+            .map_err(|error| mapping_failed(error.to_string()))?;
+        let output: Vec<O> = bytemuck::pod_collect_to_vec(&view);
+        drop(view);
         staging.unmap();
         timings.readback = start.elapsed();
         Ok(Dispatched { output, timings })

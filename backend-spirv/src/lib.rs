@@ -14,17 +14,21 @@
 //!   invocation out, chunked to the device limits, with [`Timings`] split into upload,
 //!   dispatch and readback.
 //! - Typed entry points on top of it, each with the CPU function it must agree with:
-//!   [`Gpu::math_probe`] / [`math_probe_cpu`].
+//!   [`Gpu::evaluate_table`] and [`Gpu::footprint_table`] (the CPU backend's
+//!   `evaluate_table` / `footprint_table`), [`Gpu::math_probe`] / [`math_probe_cpu`].
 
 mod adapter;
 mod dispatch;
 mod error;
 mod gpu;
 mod probe;
+mod table;
 
 pub use adapter::{ADAPTER_ENV, AdapterChoice, AdapterKind, AdapterSummary};
 pub use dispatch::{Dispatched, Input, Timings};
 pub use error::{Result, SpirvError};
 pub use gpu::{Gpu, SHADER_SPV, entry_points};
 pub use probe::math_probe_cpu;
+pub use scratchwave_spirv_shader::FootprintParams;
 pub use scratchwave_spirv_shader::probe::{MathFunction, ProbeParams};
+pub use table::FootprintRow;

@@ -17,6 +17,10 @@
 
 pub mod probe;
 
+use bytemuck::{Pod, Zeroable};
+use scratchwave_kernel::footprint::{self, Ellipse};
+use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
+use scratchwave_kernel::table::{self, Model, TableParams, TableQuery};
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
 
@@ -35,4 +39,154 @@ pub fn math_probe(
     if i < out.len() {
         out[i] = probe::evaluate(params[0].function, args[i]);
     }
+}
+
+/// [`Model`] ids as `u32` constants: `Model` has no `repr`, so a `Model` value in shader
+/// code would be a `u8`, which SPIR-V only has with the Int8 capability.
+const WERNER: u32 = Model::Werner as u32;
+const WERNER_BLENDED: u32 = Model::WernerBlended as u32;
+const VELINOV: u32 = Model::Velinov as u32;
+
+/// [`table::evaluate`] with the model fixed to `model` (a [`Model`] id): one BRDF value per
+/// query, the scratches looked up by brute force exactly as the CPU backend does.
+#[inline]
+fn table_entry(
+    model: u32,
+    id: UVec3,
+    params: &[TableParams],
+    scratches: &[Scratch],
+    queries: &[TableQuery],
+    out: &mut [f32],
+) {
+    let i = id.x as usize;
+    if i < out.len() {
+        let params = TableParams { model, ..params[0] };
+        out[i] = table::evaluate(&params, &queries[i], &ScratchSlice { scratches });
+    }
+}
+
+/// BRDF table, Werner Eq. 15 (coherent base and scratches).
+#[spirv(compute(threads(64)))]
+pub fn table_werner(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[TableParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] queries: &[TableQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+) {
+    table_entry(WERNER, id, params, scratches, queries, out);
+}
+
+/// BRDF table, Werner §5 (coherent scratches only, for blending with a base BRDF).
+#[spirv(compute(threads(64)))]
+pub fn table_werner_blended(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[TableParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] queries: &[TableQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+) {
+    table_entry(WERNER_BLENDED, id, params, scratches, queries, out);
+}
+
+/// BRDF table, Velinov Eq. 7 (incoherent sum of single-scratch responses).
+#[spirv(compute(threads(64)))]
+pub fn table_velinov(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[TableParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] queries: &[TableQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+) {
+    table_entry(VELINOV, id, params, scratches, queries, out);
+}
+
+/// Parameters of the footprint entry points.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct FootprintParams {
+    /// Coherence σ (µm).
+    pub sigma_um: f32,
+    /// Explicit padding.
+    pub pad: [f32; 3],
+}
+
+const _: () = assert!(core::mem::size_of::<FootprintParams>() == 16);
+
+/// One footprint average per (scratch, ellipse) pair: `average(scratch, ellipse, σ)`.
+#[inline]
+fn footprint_entry(
+    average: impl Fn(&Scratch, &Ellipse, f32) -> f32,
+    id: UVec3,
+    params: &[FootprintParams],
+    scratches: &[Scratch],
+    ellipses: &[Ellipse],
+    out: &mut [f32],
+) {
+    let i = id.x as usize;
+    if i < out.len() {
+        out[i] = average(&scratches[i], &ellipses[i], params[0].sigma_um);
+    }
+}
+
+/// [`footprint::eta_p_eq15`]: Velinov Eq. 15.
+#[spirv(compute(threads(64)))]
+pub fn footprint_eq15(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[FootprintParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] ellipses: &[Ellipse],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+) {
+    footprint_entry(footprint::eta_p_eq15, id, params, scratches, ellipses, out);
+}
+
+/// [`footprint::eta_p_eq16`]: Velinov Eq. 16 with its π restored.
+#[spirv(compute(threads(64)))]
+pub fn footprint_eq16(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[FootprintParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] ellipses: &[Ellipse],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+) {
+    footprint_entry(footprint::eta_p_eq16, id, params, scratches, ellipses, out);
+}
+
+/// [`footprint::eta_p_accurate`]: the accurate quadrature.
+#[spirv(compute(threads(64)))]
+pub fn footprint_accurate(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[FootprintParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] ellipses: &[Ellipse],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+) {
+    footprint_entry(
+        footprint::eta_p_accurate,
+        id,
+        params,
+        scratches,
+        ellipses,
+        out,
+    );
+}
+
+/// [`footprint::rho_p_eq18`]: Velinov Eq. 18 without its factor 2 (σ unused).
+#[spirv(compute(threads(64)))]
+pub fn footprint_rho_p(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[FootprintParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] ellipses: &[Ellipse],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+) {
+    footprint_entry(
+        |s, e, _| footprint::rho_p_eq18(s, e),
+        id,
+        params,
+        scratches,
+        ellipses,
+        out,
+    );
 }

@@ -32,20 +32,42 @@ impl ProbeParams {
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MathFunction {
-    /// [`math::exp`], whatever the `portable-math` feature routes it to.
+    /// [`math::exp`] (libm / `GLSL.std.450 Exp`, or the own approximation under
+    /// `portable-math`).
     Exp = 0,
+    /// [`math::sin`].
+    Sin = 1,
+    /// [`math::cos`].
+    Cos = 2,
+    /// [`math::sqrt`].
+    Sqrt = 3,
+    /// [`math::sinc`].
+    Sinc = 4,
+    /// [`math::si`], the sine integral.
+    Si = 5,
+    /// [`math::erf`].
+    Erf = 6,
+    /// [`math::faddeeva`] `w(z)`, `z = arg[0] + i arg[1]`.
+    Faddeeva = 7,
     /// [`math::portable::exp`], the kernel's own approximation, on every build.
-    PortableExp = 1,
+    PortableExp = 8,
     /// [`math::portable::sin`].
-    PortableSin = 2,
+    PortableSin = 9,
     /// [`math::portable::cos`].
-    PortableCos = 3,
+    PortableCos = 10,
 }
 
 impl MathFunction {
     /// Every function, in id order.
-    pub const ALL: [Self; 4] = [
+    pub const ALL: [Self; 11] = [
         Self::Exp,
+        Self::Sin,
+        Self::Cos,
+        Self::Sqrt,
+        Self::Sinc,
+        Self::Si,
+        Self::Erf,
+        Self::Faddeeva,
         Self::PortableExp,
         Self::PortableSin,
         Self::PortableCos,
@@ -56,9 +78,16 @@ impl MathFunction {
     pub fn from_id(id: u32) -> Option<Self> {
         match id {
             0 => Some(Self::Exp),
-            1 => Some(Self::PortableExp),
-            2 => Some(Self::PortableSin),
-            3 => Some(Self::PortableCos),
+            1 => Some(Self::Sin),
+            2 => Some(Self::Cos),
+            3 => Some(Self::Sqrt),
+            4 => Some(Self::Sinc),
+            5 => Some(Self::Si),
+            6 => Some(Self::Erf),
+            7 => Some(Self::Faddeeva),
+            8 => Some(Self::PortableExp),
+            9 => Some(Self::PortableSin),
+            10 => Some(Self::PortableCos),
             _ => None,
         }
     }
@@ -67,11 +96,22 @@ impl MathFunction {
     #[inline]
     pub fn evaluate(self, arg: [f32; 2]) -> [f32; 2] {
         let x = arg[0];
+        let real = |y: f32| [y, 0.0];
         match self {
-            Self::Exp => [math::exp(x), 0.0],
-            Self::PortableExp => [math::portable::exp(x), 0.0],
-            Self::PortableSin => [math::portable::sin(x), 0.0],
-            Self::PortableCos => [math::portable::cos(x), 0.0],
+            Self::Exp => real(math::exp(x)),
+            Self::Sin => real(math::sin(x)),
+            Self::Cos => real(math::cos(x)),
+            Self::Sqrt => real(math::sqrt(x)),
+            Self::Sinc => real(math::sinc(x)),
+            Self::Si => real(math::si(x)),
+            Self::Erf => real(math::erf(x)),
+            Self::Faddeeva => {
+                let w = math::faddeeva(math::C32::new(arg[0], arg[1]));
+                [w.re, w.im]
+            }
+            Self::PortableExp => real(math::portable::exp(x)),
+            Self::PortableSin => real(math::portable::sin(x)),
+            Self::PortableCos => real(math::portable::cos(x)),
         }
     }
 }

@@ -1,0 +1,87 @@
+//! BRDF tables and footprint tables on the GPU, mirroring `scratchwave_cpu::table`.
+
+use crate::dispatch::{Dispatched, Input, Timings};
+use crate::error::Result;
+use crate::gpu::Gpu;
+use scratchwave_kernel::footprint::Ellipse;
+use scratchwave_kernel::scratch::Scratch;
+use scratchwave_kernel::table::{Model, TableParams, TableQuery};
+use scratchwave_spirv_shader::FootprintParams;
+
+/// One footprint-table row, field for field the CPU backend's `FootprintRow`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FootprintRow {
+    /// Velinov Eq. 15.
+    pub eq15: f32,
+    /// Velinov Eq. 16 (π restored).
+    pub eq16: f32,
+    /// Accurate quadrature.
+    pub accurate: f32,
+    /// ρ_P by Velinov Eq. 18 (factor 2 removed).
+    pub rho_p: f32,
+}
+
+impl Gpu {
+    /// Evaluates every query against the scratch set (brute-force lookup, as on the CPU):
+    /// `kernel::table::evaluate` in the entry point of `params.model`.
+    pub fn evaluate_table(
+        &self,
+        params: &TableParams,
+        scratches: &[Scratch],
+        queries: &[TableQuery],
+    ) -> Result<Dispatched<f32>> {
+        let entry = match Model::from_u32(params.model) {
+            Model::Werner => "table_werner",
+            Model::WernerBlended => "table_werner_blended",
+            Model::Velinov => "table_velinov",
+        };
+        let inputs = [
+            Input::whole(std::slice::from_ref(params)),
+            Input::whole(scratches),
+            Input::per_item(queries),
+        ];
+        self.dispatch(entry, &inputs, queries.len())
+    }
+
+    /// Evaluates footprint queries `(scratch, ellipse)`: one dispatch per average.
+    /// The timings are summed over the four dispatches.
+    pub fn footprint_table(
+        &self,
+        sigma: f32,
+        queries: &[(Scratch, Ellipse)],
+    ) -> Result<Dispatched<FootprintRow>> {
+        let params = [FootprintParams {
+            sigma_um: sigma,
+            pad: [0.0; 3],
+        }];
+        let scratches: Vec<Scratch> = queries.iter().map(|q| q.0).collect();
+        let ellipses: Vec<Ellipse> = queries.iter().map(|q| q.1).collect();
+        let inputs = [
+            Input::whole(&params),
+            Input::per_item(&scratches),
+            Input::per_item(&ellipses),
+        ];
+        let mut rows = vec![FootprintRow::default(); queries.len()];
+        let mut timings = Timings::default();
+        let columns: [(&str, fn(&mut FootprintRow) -> &mut f32); 4] = [
+            ("footprint_eq15", |r| &mut r.eq15),
+            ("footprint_eq16", |r| &mut r.eq16),
+            ("footprint_accurate", |r| &mut r.accurate),
+            ("footprint_rho_p", |r| &mut r.rho_p),
+        ];
+        for (entry, field) in columns {
+            let column = self.dispatch::<f32>(entry, &inputs, queries.len())?;
+            for (row, value) in rows.iter_mut().zip(column.output) {
+                *field(row) = value;
+            }
+            timings.pipeline += column.timings.pipeline;
+            timings.upload += column.timings.upload;
+            timings.dispatch += column.timings.dispatch;
+            timings.readback += column.timings.readback;
+        }
+        Ok(Dispatched {
+            output: rows,
+            timings,
+        })
+    }
+}

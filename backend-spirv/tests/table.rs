@@ -1,0 +1,190 @@
+//! BRDF and footprint tables: lavapipe against the CPU backend's scalar path, which runs
+//! the same kernel function.
+//!
+//! Tolerance (issue #3): relative difference ≤ 1e-4 wherever the value exceeds 1e-6 of
+//! the case's maximum. The two sides differ only in libm vs. GLSL.std.450 transcendentals
+//! (a few ULP each) and in `fma` contraction; the Werner sums cancel (B − S), which
+//! amplifies those ULPs, hence 1e-4 rather than f32 epsilon, and the 1e-6 floor exempts
+//! the deep cancellation minima whose relative error is meaningless.
+
+mod common;
+
+use scratchwave_cpu::{Backend, evaluate_table, footprint_table};
+use scratchwave_kernel::footprint::Ellipse;
+use scratchwave_kernel::scratch::Scratch;
+use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery};
+
+const REL_TOL: f32 = 1e-4;
+const FLOOR: f32 = 1e-6;
+
+/// A few scratches around the origin: both profiles, crossing, one degenerate (zero length).
+fn scratches() -> Vec<Scratch> {
+    let s = |p0: [f32; 2], p1: [f32; 2], width: f32, depth: f32, profile: u32| Scratch {
+        p0,
+        p1,
+        width,
+        depth,
+        profile,
+        pad: 0,
+    };
+    vec![
+        s([-40.0, -3.0], [45.0, 4.0], 1.5, 0.35, 0),
+        s([-10.0, -30.0], [12.0, 35.0], 0.8, 0.12, 1),
+        s([5.0, -2.0], [25.0, -1.0], 2.5, 0.6, 0),
+        s([-20.0, 8.0], [-20.0, 8.0], 1.0, 0.2, 0),
+        s([60.0, 60.0], [90.0, 70.0], 1.0, 0.2, 1),
+    ]
+}
+
+/// Directions over the upper hemisphere (including near-mirror and grazing pairs), four
+/// wavelengths, shading points on and between scratches, constant and Fresnel materials.
+fn queries() -> Vec<TableQuery> {
+    let dir = |theta: f32, phi: f32| {
+        [
+            theta.sin() * phi.cos(),
+            theta.sin() * phi.sin(),
+            theta.cos(),
+        ]
+    };
+    let mut out = Vec::new();
+    for (i, theta_i) in [0.0_f32, 0.3, 0.9, 1.4].into_iter().enumerate() {
+        for theta_o in [0.0_f32, 0.05, 0.3, 0.8, 1.3] {
+            for phi_o in [0.0_f32, 1.0, 2.5, 3.14159] {
+                for (j, lambda_nm) in [400.0_f32, 532.0, 600.0, 700.0].into_iter().enumerate() {
+                    for x in [[0.0_f32, 0.0], [3.0, 1.0], [-18.0, 7.0], [30.0, -12.0]] {
+                        let material = if (i + j) % 2 == 0 {
+                            Material::constant(0.9)
+                        } else {
+                            Material::ior(0.2, 3.5, FresnelAngle::ThetaD)
+                        };
+                        out.push(TableQuery {
+                            wi: dir(theta_i, 0.4),
+                            lambda_nm,
+                            wo: dir(theta_o, phi_o),
+                            x,
+                            material,
+                            ..Default::default()
+                        });
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Max relative difference over the values above `FLOOR` × the case maximum.
+fn max_rel_diff(reference: &[f32], other: &[f32]) -> (f32, usize) {
+    let max = reference.iter().fold(0.0_f32, |m, v| m.max(v.abs()));
+    let mut worst = (0.0_f32, 0);
+    for (i, (r, o)) in reference.iter().zip(other).enumerate() {
+        if r.abs() > FLOOR * max {
+            let rel = (r - o).abs() / r.abs();
+            if rel > worst.0 || rel.is_nan() {
+                worst = (rel, i);
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn tables_agree_with_the_cpu_backend() {
+    let Some(gpu) = common::lavapipe() else {
+        return;
+    };
+    let scratches = scratches();
+    let queries = queries();
+    for model in [Model::Werner, Model::WernerBlended, Model::Velinov] {
+        for (eta, depth_term, base_gaussian) in [(0, 0, 0), (1, 1, 1)] {
+            let params = TableParams {
+                model: model as u32,
+                eta,
+                depth_term,
+                base_gaussian,
+                sigma_um: 10.0,
+                ..Default::default()
+            };
+            let cpu = evaluate_table(Backend::Scalar, &params, &scratches, &queries);
+            let gpu_out = gpu
+                .evaluate_table(&params, &scratches, &queries)
+                .unwrap()
+                .output;
+            assert_eq!(gpu_out.len(), cpu.len());
+            assert!(
+                cpu.iter().any(|&v| v > 0.0),
+                "{model:?}: an all-zero case tests nothing"
+            );
+            let (rel, at) = max_rel_diff(&cpu, &gpu_out);
+            eprintln!("{model:?} eta={eta} depth_term={depth_term}: max rel diff {rel:.2e}");
+            assert!(
+                rel <= REL_TOL,
+                "{model:?} {params:?}: rel diff {rel:e} at query {at}: cpu {} gpu {}",
+                cpu[at],
+                gpu_out[at]
+            );
+        }
+    }
+}
+
+#[test]
+fn a_table_without_scratches_is_the_flat_base() {
+    let Some(gpu) = common::lavapipe() else {
+        return;
+    };
+    let queries = queries();
+    let params = TableParams {
+        model: Model::Werner as u32,
+        sigma_um: 10.0,
+        ..Default::default()
+    };
+    let cpu = evaluate_table(Backend::Scalar, &params, &[], &queries);
+    let gpu_out = gpu.evaluate_table(&params, &[], &queries).unwrap().output;
+    let (rel, at) = max_rel_diff(&cpu, &gpu_out);
+    assert!(rel <= REL_TOL, "rel diff {rel:e} at query {at}");
+}
+
+#[test]
+fn footprint_tables_agree_with_the_cpu_backend() {
+    let Some(gpu) = common::lavapipe() else {
+        return;
+    };
+    let mut pairs = Vec::new();
+    for scratch in scratches() {
+        for (k, a1) in [0.5_f32, 3.0, 12.0, 40.0, 150.0].into_iter().enumerate() {
+            for center in [[0.0_f32, 0.0], [2.0, 1.0], [-15.0, 20.0]] {
+                let ellipse = Ellipse {
+                    center,
+                    angle_rad: 0.3 * k as f32,
+                    a1,
+                    a2: 0.4 * a1,
+                    pad: [0.0; 3],
+                };
+                pairs.push((scratch, ellipse));
+            }
+        }
+    }
+    let sigma = 10.0;
+    let cpu = footprint_table(Backend::Scalar, sigma, &pairs);
+    let gpu_rows = gpu.footprint_table(sigma, &pairs).unwrap().output;
+    type Column = fn(&scratchwave_cpu::FootprintRow) -> f32;
+    type GpuColumn = fn(&scratchwave_spirv::FootprintRow) -> f32;
+    let columns: [(&str, Column, GpuColumn); 4] = [
+        ("eq15", |r| r.eq15, |r| r.eq15),
+        ("eq16", |r| r.eq16, |r| r.eq16),
+        ("accurate", |r| r.accurate, |r| r.accurate),
+        ("rho_p", |r| r.rho_p, |r| r.rho_p),
+    ];
+    for (name, cpu_col, gpu_col) in columns {
+        let c: Vec<f32> = cpu.iter().map(cpu_col).collect();
+        let g: Vec<f32> = gpu_rows.iter().map(gpu_col).collect();
+        let (rel, at) = max_rel_diff(&c, &g);
+        eprintln!("footprint {name}: max rel diff {rel:.2e}");
+        assert!(
+            rel <= REL_TOL,
+            "{name}: rel diff {rel:e} at {at}: cpu {} gpu {}",
+            c[at],
+            g[at]
+        );
+    }
+}
