@@ -133,6 +133,60 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
+    kernel_math_agreement(&gpu, n)?;
+    Ok(())
+}
+
+/// The rest of the seam (libm / GLSL.std.450 based): CPU vs lavapipe, max absolute and
+/// relative difference (relative only where |value| > 1e-6 of the range's maximum).
+fn kernel_math_agreement(gpu: &Gpu, n: usize) -> Result<(), Box<dyn std::error::Error>> {
+    println!("\n| function | arguments | max abs diff | max rel diff | max ULP | bit-identical |");
+    println!("|---|---|---|---|---|---|");
+    let line = |lo: f32, hi: f32| -> Vec<[f32; 2]> {
+        (0..n)
+            .map(|i| [lo + (hi - lo) * (i as f64 / (n - 1) as f64) as f32, 0.0])
+            .collect()
+    };
+    let side = (n as f64).sqrt() as usize;
+    let grid: Vec<[f32; 2]> = (0..side * side)
+        .map(|i| {
+            [
+                -10.0 + 20.0 * (i % side) as f32 / (side - 1) as f32,
+                10.0 * (i / side) as f32 / (side - 1) as f32,
+            ]
+        })
+        .collect();
+    let cases: [(MathFunction, &str, Vec<[f32; 2]>); 8] = [
+        (MathFunction::Exp, "[-87, 88.5]", line(-87.0, 88.5)),
+        (MathFunction::Sin, "[-100, 100]", line(-100.0, 100.0)),
+        (MathFunction::Cos, "[-100, 100]", line(-100.0, 100.0)),
+        (MathFunction::Sqrt, "[0, 1e6]", line(0.0, 1.0e6)),
+        (MathFunction::Sinc, "[-100, 100]", line(-100.0, 100.0)),
+        (MathFunction::Si, "[-100, 100]", line(-100.0, 100.0)),
+        (MathFunction::Erf, "[-6, 6]", line(-6.0, 6.0)),
+        (MathFunction::Faddeeva, "re [-10, 10] × im [0, 10]", grid),
+    ];
+    for (function, label, args) in cases {
+        let cpu = math_probe_cpu(function, &args);
+        let gpu_out = gpu.math_probe(function, &args)?.output;
+        let magnitude = |v: &[f32; 2]| v[0].hypot(v[1]);
+        let max = cpu.iter().map(magnitude).fold(0.0_f32, f32::max);
+        let (mut abs, mut rel, mut ulp, mut identical) = (0.0_f32, 0.0_f32, 0_u64, 0);
+        for (c, g) in cpu.iter().zip(&gpu_out) {
+            let d = (c[0] - g[0]).hypot(c[1] - g[1]);
+            abs = abs.max(d);
+            if magnitude(c) > 1e-6 * max {
+                rel = rel.max(d / magnitude(c));
+            }
+            ulp = ulp.max(ulps(c[0], g[0]).max(ulps(c[1], g[1])));
+            identical +=
+                usize::from(c[0].to_bits() == g[0].to_bits() && c[1].to_bits() == g[1].to_bits());
+        }
+        println!(
+            "| {function:?} | {label} | {abs:.2e} | {rel:.2e} | {ulp} | {identical}/{} |",
+            args.len()
+        );
+    }
     Ok(())
 }
 

@@ -227,7 +227,7 @@ impl Gpu {
                 problem,
             })
         };
-        if size_of::<O>() == 0 || size_of::<O>() % 4 != 0 {
+        if size_of::<O>() == 0 || !size_of::<O>().is_multiple_of(4) {
             return Err(SpirvError::BadOutput {
                 entry: entry.to_owned(),
                 size: size_of::<O>(),
@@ -258,7 +258,7 @@ impl Gpu {
             }
             match input.per_item {
                 Some(stride) => {
-                    if stride == 0 || stride % 4 != 0 {
+                    if stride == 0 || !stride.is_multiple_of(4) {
                         return bad_input(
                             index,
                             format!("element size {stride} bytes is not a non-zero multiple of 4"),
@@ -271,7 +271,7 @@ impl Gpu {
                     strides.push(stride);
                 }
                 None => {
-                    if bytes % 4 != 0 {
+                    if !bytes.is_multiple_of(4) {
                         return bad_input(index, format!("{bytes} bytes is not a multiple of 4"));
                     }
                     if bytes > max_binding {

@@ -21,6 +21,9 @@ pub struct FootprintRow {
     pub rho_p: f32,
 }
 
+/// Selects one field of a [`FootprintRow`].
+type Column = fn(&mut FootprintRow) -> &mut f32;
+
 impl Gpu {
     /// Evaluates every query against the scratch set (brute-force lookup, as on the CPU):
     /// `kernel::table::evaluate` in the entry point of `params.model`.
@@ -63,7 +66,7 @@ impl Gpu {
         ];
         let mut rows = vec![FootprintRow::default(); queries.len()];
         let mut timings = Timings::default();
-        let columns: [(&str, fn(&mut FootprintRow) -> &mut f32); 4] = [
+        let columns: [(&str, Column); 4] = [
             ("footprint_eq15", |r| &mut r.eq15),
             ("footprint_eq16", |r| &mut r.eq16),
             ("footprint_accurate", |r| &mut r.accurate),

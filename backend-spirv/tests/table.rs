@@ -49,7 +49,7 @@ fn queries() -> Vec<TableQuery> {
     let mut out = Vec::new();
     for (i, theta_i) in [0.0_f32, 0.3, 0.9, 1.4].into_iter().enumerate() {
         for theta_o in [0.0_f32, 0.05, 0.3, 0.8, 1.3] {
-            for phi_o in [0.0_f32, 1.0, 2.5, 3.14159] {
+            for phi_o in [0.0_f32, 1.0, 2.5, 3.1] {
                 for (j, lambda_nm) in [400.0_f32, 532.0, 600.0, 700.0].into_iter().enumerate() {
                     for x in [[0.0_f32, 0.0], [3.0, 1.0], [-18.0, 7.0], [30.0, -12.0]] {
                         let material = if (i + j) % 2 == 0 {

@@ -1,4 +1,6 @@
 //! Shared by the integration tests: open lavapipe or skip with the reason.
+// Each test binary uses a subset of these helpers.
+#![allow(dead_code)]
 
 use scratchwave_spirv::{AdapterChoice, Gpu, SpirvError};
 
