@@ -79,24 +79,25 @@ fn table_models_are_finite_and_bounded() {
             let mut wi = direction(&mut r);
             let mut wo = direction(&mut r);
             // Put ξ₂ exactly on a sinc zero / triangle pole of the first scratch.
-            if let (Some(s), true) = (scratches.first(), r.u() < 0.3) {
-                if let Some(f) = s.frame() {
-                    let k = r.pick(&[1.0f32, 2.0, -3.0]);
-                    let target = if s.width > 0.0 {
-                        k * lam / s.width
-                    } else {
-                        0.0
-                    };
-                    let gamma = wi[2].max(0.0) + wo[2].max(0.0);
-                    let pole = 2.0 * gamma * s.depth / s.width.max(1e-6) * r.pick(&[1.0f32, -1.0]);
-                    let shift = if r.u() < 0.5 { target } else { pole * lam };
-                    let cur = (wi[0] + wo[0]) * f.bitangent.x + (wi[1] + wo[1]) * f.bitangent.y;
-                    let d = shift - cur;
-                    wo[0] += d * f.bitangent.x;
-                    wo[1] += d * f.bitangent.y;
-                    let l = (wo[0] * wo[0] + wo[1] * wo[1]).min(1.0);
-                    wo[2] = (1.0 - l).max(0.0).sqrt();
-                }
+            let nudge = r.u() < 0.3;
+            if let (Some(s), true) = (scratches.first(), nudge)
+                && let Some(f) = s.frame()
+            {
+                let k = r.pick(&[1.0f32, 2.0, -3.0]);
+                let target = if s.width > 0.0 {
+                    k * lam / s.width
+                } else {
+                    0.0
+                };
+                let gamma = wi[2].max(0.0) + wo[2].max(0.0);
+                let pole = 2.0 * gamma * s.depth / s.width.max(1e-6) * r.pick(&[1.0f32, -1.0]);
+                let shift = if r.u() < 0.5 { target } else { pole * lam };
+                let cur = (wi[0] + wo[0]) * f.bitangent.x + (wi[1] + wo[1]) * f.bitangent.y;
+                let d = shift - cur;
+                wo[0] += d * f.bitangent.x;
+                wo[1] += d * f.bitangent.y;
+                let l = (wo[0] * wo[0] + wo[1] * wo[1]).min(1.0);
+                wo[2] = (1.0 - l).max(0.0).sqrt();
             }
             if r.u() < 0.05 {
                 std::mem::swap(&mut wi, &mut wo);
