@@ -1,3 +1,5 @@
+//! (criterion's macros generate undocumented items)
+#![allow(missing_docs)]
 //! BRDF evaluations/s, coherent (Werner) and incoherent (Velinov), with 1, 10 and 100
 //! scratches in the window, on the scalar, SIMD (one thread) and SIMD + rayon paths.
 //! `python3 benches/report.py` turns criterion's output into the README's ratio table.
