@@ -10,7 +10,10 @@
 #![no_std]
 #![cfg_attr(target_arch = "spirv", allow(internal_features))]
 
+pub mod bvh;
 pub mod math;
+pub mod ray;
+pub mod segment;
 
 pub use glam;
 pub use num_complex;
