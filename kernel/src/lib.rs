@@ -10,10 +10,13 @@
 #![no_std]
 #![cfg_attr(target_arch = "spirv", allow(internal_features))]
 
+pub mod bvh;
 pub mod footprint;
 pub mod fresnel;
 pub mod math;
+pub mod ray;
 pub mod scratch;
+pub mod segment;
 pub mod table;
 
 pub use glam;
