@@ -8,7 +8,9 @@ use scratchwave_cpu::Backend;
 use std::path::PathBuf;
 
 fn files(dir: &str) -> Vec<PathBuf> {
-    let d = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..").join(dir);
+    let d = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .join(dir);
     let mut v: Vec<PathBuf> = std::fs::read_dir(&d)
         .unwrap_or_else(|e| panic!("{}: {e}", d.display()))
         .map(|e| e.unwrap().path())
@@ -20,13 +22,18 @@ fn files(dir: &str) -> Vec<PathBuf> {
 
 #[test]
 fn reference_tables_are_reproduced_on_cpu() {
-    let backends: Vec<Box<dyn TableBackend>> = vec![Box::new(Cpu(Backend::Scalar)), Box::new(Cpu(Backend::Simd))];
+    let backends: Vec<Box<dyn TableBackend>> =
+        vec![Box::new(Cpu(Backend::Scalar)), Box::new(Cpu(Backend::Simd))];
     let tables = files("reference/golden/tables");
     assert!(!tables.is_empty(), "no reference tables");
     let mut reports = Vec::new();
     for f in tables {
         let case = load_case(&f).unwrap_or_else(|e| panic!("{e}"));
-        assert!(case.expected.is_some(), "{}: reference tables carry expected values", case.name);
+        assert!(
+            case.expected.is_some(),
+            "{}: reference tables carry expected values",
+            case.name
+        );
         reports.push(run_case(&case, &backends));
     }
     let md = markdown(&reports);
@@ -34,7 +41,11 @@ fn reference_tables_are_reproduced_on_cpu() {
     for r in &reports {
         assert!(r.errors.is_empty());
         for row in &r.rows {
-            assert!(row.pass, "{} {}: max rel {} (tol {})", r.name, row.label, row.agreement.max_rel, row.tol);
+            assert!(
+                row.pass,
+                "{} {}: max rel {} (tol {})",
+                r.name, row.label, row.agreement.max_rel, row.tol
+            );
         }
     }
 }
@@ -43,6 +54,10 @@ fn reference_tables_are_reproduced_on_cpu() {
 fn committed_conformance_cases_parse() {
     for f in files("conformance/cases") {
         let case = load_case(&f).unwrap_or_else(|e| panic!("{e}"));
-        assert!(!case.spec.queries.is_empty() && !case.why.is_empty(), "{}", case.name);
+        assert!(
+            !case.spec.queries.is_empty() && !case.why.is_empty(),
+            "{}",
+            case.name
+        );
     }
 }

@@ -15,7 +15,8 @@ const FLOOR: f64 = 1e-6;
 
 fn golden(name: &str) -> String {
     let p = format!("{}/../reference/golden/{name}", env!("CARGO_MANIFEST_DIR"));
-    std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{p}: {e} (run python3 reference/generate.py)"))
+    std::fs::read_to_string(&p)
+        .unwrap_or_else(|e| panic!("{p}: {e} (run python3 reference/generate.py)"))
 }
 
 fn csv(name: &str) -> Vec<Vec<f64>> {
@@ -53,7 +54,11 @@ struct Worst {
 fn worst(pairs: &[(f64, f64, String)]) -> Worst {
     // pairs: (|kernel − ref|, |ref|, label)
     let peak = pairs.iter().fold(0.0f64, |m, p| m.max(p.1));
-    let mut w = Worst { rel: 0.0, floor: 0.0, at: String::new() };
+    let mut w = Worst {
+        rel: 0.0,
+        floor: 0.0,
+        at: String::new(),
+    };
     for (d, r, label) in pairs {
         if *r >= FLOOR * peak && *r > 0.0 {
             if d / r > w.rel {
@@ -69,8 +74,20 @@ fn worst(pairs: &[(f64, f64, String)]) -> Worst {
 
 fn check(what: &str, pairs: &[(f64, f64, String)]) {
     let w = worst(pairs);
-    eprintln!("{what}: {} values, worst rel {:.3e} at {}, worst below floor {:.3e} of max", pairs.len(), w.rel, w.at, w.floor);
-    assert!(w.rel <= TOL && w.floor <= TOL, "{what}: rel {} at {}, floor {}", w.rel, w.at, w.floor);
+    eprintln!(
+        "{what}: {} values, worst rel {:.3e} at {}, worst below floor {:.3e} of max",
+        pairs.len(),
+        w.rel,
+        w.at,
+        w.floor
+    );
+    assert!(
+        w.rel <= TOL && w.floor <= TOL,
+        "{what}: rel {} at {}, floor {}",
+        w.rel,
+        w.at,
+        w.floor
+    );
 }
 
 fn cdiff(k: C32, r: (f64, f64)) -> f64 {
@@ -88,7 +105,11 @@ fn faddeeva_matches_mpmath() {
         .iter()
         .map(|r| {
             let w = math::faddeeva(C32::new(r[0] as f32, r[1] as f32));
-            (cdiff(w, (r[2], r[3])), cabs((r[2], r[3])), format!("z={}+{}i", r[0], r[1]))
+            (
+                cdiff(w, (r[2], r[3])),
+                cabs((r[2], r[3])),
+                format!("z={}+{}i", r[0], r[1]),
+            )
         })
         .collect();
     // |w| is the scale: relative to each value (w never vanishes in the upper half plane).
@@ -109,10 +130,15 @@ fn si_matches_mpmath() {
         }
         worst_velinov = worst_velinov.max((f64::from(math::si_velinov(x)) - si).abs());
     }
-    eprintln!("Si: worst relative {worst_exact:.3e}; Velinov Eq. 29 worst absolute {worst_velinov:.4}");
+    eprintln!(
+        "Si: worst relative {worst_exact:.3e}; Velinov Eq. 29 worst absolute {worst_velinov:.4}"
+    );
     assert!(worst_exact < 2e-6, "Si worst relative {worst_exact}");
     // Velinov's fit is a visual-quality approximation (their Fig. 7 shows residuals ≈ 0.05).
-    assert!(worst_velinov < 0.06, "Eq. 29 worst absolute {worst_velinov}");
+    assert!(
+        worst_velinov < 0.06,
+        "Eq. 29 worst absolute {worst_velinov}"
+    );
 }
 
 #[test]
@@ -122,7 +148,11 @@ fn fresnel_matches_mpmath() {
         .iter()
         .map(|r| {
             let k = scratchwave_kernel::fresnel::fresnel(r[0] as f32, r[1] as f32, r[2] as f32);
-            ((f64::from(k) - r[3]).abs(), r[3].abs(), format!("cos={} n={} k={}", r[0], r[1], r[2]))
+            (
+                (f64::from(k) - r[3]).abs(),
+                r[3].abs(),
+                format!("cos={} n={} k={}", r[0], r[1], r[2]),
+            )
         })
         .collect();
     check("fresnel", &pairs);
@@ -134,7 +164,11 @@ fn spatial_phase_matches_quadrature() {
     let mut fin = Vec::new();
     let mut inf = Vec::new();
     for (i, e) in cases.as_array().unwrap().iter().enumerate() {
-        let s = Scratch { p0: v2(&e["p0"]), p1: v2(&e["p1"]), ..Scratch::default() };
+        let s = Scratch {
+            p0: v2(&e["p0"]),
+            p1: v2(&e["p1"]),
+            ..Scratch::default()
+        };
         let x0 = Vec2::from_array(v2(&e["x0"]));
         let xi = Vec2::from_array(v2(&e["xi"]));
         let sigma = f(&e["sigma"]) as f32;
@@ -142,7 +176,11 @@ fn spatial_phase_matches_quadrature() {
         let label = format!("case {i}");
         match s.frame() {
             Some(fr) => {
-                fin.push((cdiff(eta_finite(&fr, x0, xi, sigma), r), cabs(r), label.clone()));
+                fin.push((
+                    cdiff(eta_finite(&fr, x0, xi, sigma), r),
+                    cabs(r),
+                    label.clone(),
+                ));
                 inf.push((cdiff(eta_infinite(&fr, x0, xi, sigma), ri), cabs(ri), label));
             }
             None => assert!(cabs(r) == 0.0, "{label}: zero-length segment must give 0"),
@@ -158,13 +196,31 @@ fn profile_transforms_match_quadrature() {
     let mut mask = Vec::new();
     let mut scratch = Vec::new();
     for (i, p) in cases.as_array().unwrap().iter().enumerate() {
-        let profile = if p["profile"] == "triangle" { Profile::Triangle } else { Profile::Rect };
-        let (w, d, g, l, x) = (f(&p["W"]) as f32, f(&p["D"]) as f32, f(&p["gamma"]) as f32, f(&p["lambda"]) as f32, f(&p["xi2"]) as f32);
+        let profile = if p["profile"] == "triangle" {
+            Profile::Triangle
+        } else {
+            Profile::Rect
+        };
+        let (w, d, g, l, x) = (
+            f(&p["W"]) as f32,
+            f(&p["D"]) as f32,
+            f(&p["gamma"]) as f32,
+            f(&p["lambda"]) as f32,
+            f(&p["xi2"]) as f32,
+        );
         let m = c(&p["mask"]);
         let s = c(&p["scratch"]);
         let label = format!("case {i} ({profile:?} W={w} D={d} ξ₂={x})");
-        mask.push(((f64::from(mask_transform(w, x)) - m.0).abs() + m.1.abs(), cabs(m), label.clone()));
-        scratch.push((cdiff(profile_transform(profile, w, d, g, l, x), s), cabs(s), label));
+        mask.push((
+            (f64::from(mask_transform(w, x)) - m.0).abs() + m.1.abs(),
+            cabs(m),
+            label.clone(),
+        ));
+        scratch.push((
+            cdiff(profile_transform(profile, w, d, g, l, x), s),
+            cabs(s),
+            label,
+        ));
     }
     check("mask transform", &mask);
     check("profile transform", &scratch);
@@ -196,9 +252,17 @@ fn footprint_matches_quadrature() {
         let sigma = f(&q["sigma"]) as f32;
         let label = format!("case {i} (A_P/A_C = {:.3})", f(&q["A_P_over_A_C"]));
         let ex = f(&q["exact_eta_p"]);
-        acc.push(((f64::from(footprint::eta_p_accurate(&s, &e, sigma)) - ex).abs(), ex, label.clone()));
+        acc.push((
+            (f64::from(footprint::eta_p_accurate(&s, &e, sigma)) - ex).abs(),
+            ex,
+            label.clone(),
+        ));
         let er = f(&q["exact_rho_p"]);
-        rho.push(((f64::from(footprint::rho_p_accurate(&s, &e, sigma)) - er).abs(), er, label.clone()));
+        rho.push((
+            (f64::from(footprint::rho_p_accurate(&s, &e, sigma)) - er).abs(),
+            er,
+            label.clone(),
+        ));
         // The paper's closed forms, same formulas evaluated in f64 by the reference.
         for (k, key) in [
             (footprint::contained_length(&s, &e), "l_contained"),

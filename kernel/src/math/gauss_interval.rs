@@ -14,7 +14,7 @@
 //! integrated directly by 8-point Gauss–Legendre instead.
 
 use super::complex::{C32, cis, cscale};
-use super::faddeeva::faddeeva;
+use super::faddeeva::{faddeeva, faddeeva_lanes};
 
 /// 8-point Gauss–Legendre nodes on [−1, 1] (positive half).
 const GL_X: [f32; 4] = [
@@ -31,15 +31,14 @@ const GL_W: [f32; 4] = [
     0.101_228_536_290_376_3,
 ];
 
-/// `e^{−x² − 2ixy} w(s(−y + ix))` for the endpoint `z = x + iy`, with `s = sign(x)` so that
-/// the Faddeeva argument lies in the upper half plane, given `g = e^{−x²}`. `phase = 2xy` is
-/// passed in so the caller can form it from the unscaled inputs (one rounding instead of
-/// three).
+/// The Faddeeva argument `s(−y + ix)` of the endpoint `z = x + iy`, with `s = sign(x)` so
+/// that it lies in the upper half plane. The endpoint's term is then
+/// `e^{−x²} e^{−2ixy} w(·)`, with the phase `2xy` formed from the unscaled inputs by the
+/// caller (one rounding instead of three).
 #[inline]
-fn endpoint_term(x: f32, y: f32, g: f32, phase: f32) -> C32 {
+fn endpoint_arg(x: f32, y: f32) -> C32 {
     let s = super::sign(x);
-    let w = faddeeva(C32::new(-s * y, s * x));
-    cscale(cis(-phase) * w, g)
+    C32::new(-s * y, s * x)
 }
 
 /// A rough lower bound of `|e^{−x²} w(−y + ix)|` (|w| decays like `1/(√π |z|)`), used only
@@ -80,14 +79,29 @@ pub fn gauss_fourier_interval(a: f32, b: f32, sigma: f32, nu: f32) -> C32 {
         centre,
         super::max(term_scale(ga, xa, y), term_scale(gb, xb, y)),
     );
-    let term = |x: f32, g: f32, u: f32| {
-        if g > NEGLIGIBLE * big {
-            endpoint_term(x, y, g, super::TAU * nu * u)
-        } else {
-            C32::new(0.0, 0.0)
-        }
+    let (need_a, need_b) = (ga > NEGLIGIBLE * big, gb > NEGLIGIBLE * big);
+    let zero = C32::new(0.0, 0.0);
+    // Both Faddeeva evaluations in one two-lane call when both ends matter.
+    let (wa, wb) = if need_a && need_b {
+        let w = faddeeva_lanes([endpoint_arg(xa, y), endpoint_arg(xb, y)]);
+        (w[0], w[1])
+    } else if need_a {
+        (faddeeva(endpoint_arg(xa, y)), zero)
+    } else if need_b {
+        (zero, faddeeva(endpoint_arg(xb, y)))
+    } else {
+        (zero, zero)
     };
-    let (ea, eb) = (term(xa, ga, a), term(xb, gb, b));
+    let ea = if need_a {
+        cscale(cis(-super::TAU * nu * a) * wa, ga)
+    } else {
+        zero
+    };
+    let eb = if need_b {
+        cscale(cis(-super::TAU * nu * b) * wb, gb)
+    } else {
+        zero
+    };
     let diff = if same_side {
         // Same side: the e^{−y²} parts cancel exactly; take them out analytically.
         cscale(ea - eb, super::sign(xa))
