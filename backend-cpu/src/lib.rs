@@ -17,6 +17,6 @@ mod segment_bvh;
 mod triangle_bvh;
 
 pub use mesh::MeshError;
-pub use queries::{RayQueries, SegmentRadiusQuery};
+pub use queries::{Coherence, RayQueries, SegmentRadiusQuery};
 pub use segment_bvh::SegmentBvh;
 pub use triangle_bvh::TriangleBvh;
