@@ -589,7 +589,7 @@ pub(crate) fn check_hit_layout(device: &Device) -> Result<(), Error> {
     // SAFETY: the record is followed by 128 bytes we own, so even an ABI mismatch writes
     // only into our own memory.
     unsafe { (ffi::loaded().rtcIntersect1)(scene.as_raw(), &mut probe.rayhit, &mut args) };
-    if probe.rayhit.hit.geomID != 0 || probe.rayhit.ray.tfar != 1.0 {
+    if probe.rayhit.hit.geomID != 0 || (probe.rayhit.ray.tfar - 1.0).abs() > 1e-5 {
         return Err(Error::IncompatibleAbi(format!(
             "probe ray reported geomID {} at t = {} (expected 0 at 1)",
             probe.rayhit.hit.geomID, probe.rayhit.ray.tfar

@@ -98,7 +98,8 @@ fn single_ray_hit_record_is_the_4_4_layout() {
     unsafe { (api().rtcIntersect1)(raw_scene(&scene), &mut g.value, &mut args) };
     g.assert_intact("rtcIntersect1");
     let h = g.value.hit;
-    assert_eq!((h.geomID, h.primID, g.value.ray.tfar), (0, 0, 1.0));
+    assert_eq!((h.geomID, h.primID), (0, 0));
+    assert!((g.value.ray.tfar - 1.0).abs() < 1e-6);
     // Embree ≥ 4.3 writes instPrimID, at bytes 80..84 of the record: just past the end of
     // the 80-byte RTCRayHit of the 4.2 headers that embree4-sys/embree4-rs declare.
     assert_eq!(
@@ -151,7 +152,7 @@ macro_rules! packet_canary {
                         (0, if i % 4 == 0 { 0 } else { 1 }),
                         "lane {i}"
                     );
-                    assert_eq!(g.value.ray.tfar[i], 1.0, "lane {i}");
+                    assert!((g.value.ray.tfar[i] - 1.0).abs() < 1e-6, "lane {i}");
                     assert_eq!(h.instPrimID[0][i], INVALID, "lane {i}: instPrimID written");
                 } else {
                     assert_eq!(h.geomID[i], INVALID, "lane {i}");
@@ -358,5 +359,28 @@ fn ray_through_the_safe_api_matches() {
     let hit = scene
         .intersect(&Ray::new([0.5, -0.5, 0.0], [0.0, 0.0, 1.0]))
         .expect("hit");
-    assert_eq!((hit.t, hit.geom_id, hit.prim_id), (1.0, 0, 0));
+    assert_eq!((hit.geom_id, hit.prim_id), (0, 0));
+    assert!((hit.t - 1.0).abs() < 1e-6);
+}
+
+/// Negative control for `scripts/valgrind-embree.sh`: hands Embree a hit record of the
+/// 4.2 size (80 bytes, as `embree4-sys` declares it) in a heap block of exactly that size.
+/// Embree 4.4 writes `instPrimID` 4 bytes past the block, which memcheck must report.
+/// Outside memcheck this is a real heap overflow, hence ignored.
+#[test]
+#[ignore = "deliberate 4-byte heap overflow; run only under memcheck by scripts/valgrind-embree.sh"]
+fn memcheck_catches_a_4_2_layout_hit_record() {
+    let (_device, scene) = quad_scene();
+    let layout = std::alloc::Layout::from_size_align(80, 16).expect("layout");
+    // SAFETY: none — this test exists to perform the overflow that the 4.2 layout causes.
+    unsafe {
+        let block = std::alloc::alloc_zeroed(layout);
+        assert!(!block.is_null());
+        block.cast::<ffi::RTCRay>().write(rtc_ray(0.5, -0.5));
+        block.add(48 + 24).cast::<u32>().write(INVALID); // geomID
+        let mut args = ffi::RTCIntersectArguments::new(ffi::RTC_RAY_QUERY_FLAG_INCOHERENT);
+        (api().rtcIntersect1)(raw_scene(&scene), block.cast(), &mut args);
+        assert_eq!(block.add(48 + 24).cast::<u32>().read(), 0, "hit geomID");
+        std::alloc::dealloc(block, layout);
+    }
 }

@@ -274,6 +274,30 @@ fn sizes() -> [(usize, usize, usize); 3] {
     ]
 }
 
+/// Every query path on small scenes: fast enough for `scripts/valgrind-embree.sh`.
+#[test]
+fn small_scenes_agree() {
+    let device = Device::new().expect("Embree");
+    for mesh in [sphere_with(400), triangle_soup(400, 14)] {
+        check(
+            &device,
+            &mesh,
+            &random_rays(512, 15),
+            Coherence::Incoherent,
+            512,
+            "small random",
+        );
+        check(
+            &device,
+            &mesh,
+            &camera_rays(16, 16, 0.4),
+            Coherence::Coherent,
+            256,
+            "small camera",
+        );
+    }
+}
+
 #[test]
 fn closed_spheres_agree() {
     let device = Device::new().expect("Embree");
