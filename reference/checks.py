@@ -289,6 +289,8 @@ def tolerance_failures(checks):
         if k.startswith("profile_part"):
             if v["rect_closed_form_max_abs_over_W"] > 1e-25:
                 bad.append("%s rect closed form %g" % (k, v["rect_closed_form_max_abs_over_W"]))
+            if v["tri_sinc_form_incl_poles_max_abs_over_W"] > 1e-25:
+                bad.append("%s triangle sinc form %g" % (k, v["tri_sinc_form_incl_poles_max_abs_over_W"]))
             if v["tri_corrected_max_abs_over_W"] > 1e-18:
                 bad.append("%s triangle corrected %g" % (k, v["tri_corrected_max_abs_over_W"]))
             continue

@@ -419,6 +419,22 @@ def closedform_triangle_corrected(W, D, gamma, lam, xi2):
             + Cc * (mp.exp(-1j * mp.pi * (W * xi2 + 2 * D * gamma / lam)) - 1))
 
 
+def closedform_triangle_sinc(W, D, gamma, lam, xi2):
+    """Check only: pole-free form of the triangle transform (README).
+
+    P = Phi_D (W/2) [e^{-i th-/2} sinc(th-/2) + e^{-i th+/2} sinc(th+/2)],
+    th+- = pi (2 gamma D / lambda +- W xi2),  Phi_D = e^{+2 pi i gamma D / lambda}."""
+    W, D, gamma, lam, xi2 = (M(W), M(D), M(gamma), M(lam), M(xi2))
+
+    def sinc(x):
+        return mp.sin(x) / x if x != 0 else mpf(1)
+    a = 2 * mp.pi * gamma * D / lam
+    tm = a - mp.pi * W * xi2
+    tp = a + mp.pi * W * xi2
+    return (mp.exp(1j * a) * W / 2
+            * (mp.exp(-1j * tm / 2) * sinc(tm / 2) + mp.exp(-1j * tp / 2) * sinc(tp / 2)))
+
+
 def closedform_triangle_printed(W, D, gamma, lam, xi2, phi_sign=-1, fix_W=False):
     """Check only: Werner Eqs. 29-31 as printed (Phi_D of Eq. 28 when phi_sign = -1).
 
