@@ -5,7 +5,9 @@ use crate::error::SpecError;
 use crate::json::{self, Obj};
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::scratch::{Profile, Scratch};
-use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery};
+use scratchwave_kernel::table::{
+    FresnelAngle, Material, Model, TableParams, TableQuery, UNIT_TOLERANCE,
+};
 use serde_json::Value;
 
 /// Default coherence σ (µm): δc = 6σ = 60 µm (Werner §4.1).
@@ -20,6 +22,8 @@ pub struct TableSpec {
     pub scratches: Vec<Scratch>,
     /// Queries in input order.
     pub queries: Vec<TableQuery>,
+    /// The spec-level material (queries without their own use it).
+    pub default_material: Material,
 }
 
 /// A parsed `scratchwave footprint` spec.
@@ -105,6 +109,7 @@ pub fn table_spec(v: &Value) -> Result<TableSpec, SpecError> {
         params,
         scratches,
         queries,
+        default_material: material,
     })
 }
 
@@ -165,16 +170,22 @@ fn scratches(top: &Obj) -> Result<Vec<Scratch>, SpecError> {
             Some("triangle") => Profile::Triangle,
             _ => Profile::Rect,
         };
-        out.push(Scratch {
-            p0: point(&s, "p0")?,
-            p1: point(&s, "p1")?,
-            width: json::positive(s.num("width")?, &s.path_of("width"), true)?,
-            depth: json::positive(s.num("depth")?, &s.path_of("depth"), true)?,
-            profile: profile as u32,
-            pad: 0,
-        });
+        let (p0, p1) = (point64(&s, "p0")?, point64(&s, "p1")?);
+        let width = json::positive(s.num("width")?, &s.path_of("width"), true)?;
+        let depth = json::positive(s.num("depth")?, &s.path_of("depth"), true)?;
+        out.push(Scratch::from_endpoints(p0, p1, width, depth, profile));
     }
     Ok(out)
+}
+
+/// A point kept in f64 (scratch end points: see `Scratch::from_endpoints`), finite and
+/// within f32 range.
+fn point64(o: &Obj, key: &str) -> Result<[f64; 2], SpecError> {
+    let p = o.vec::<2>(key)?;
+    let path = o.path_of(key);
+    json::to_f32(p[0], &format!("{path}[0]"))?;
+    json::to_f32(p[1], &format!("{path}[1]"))?;
+    Ok(p)
 }
 
 fn point(o: &Obj, key: &str) -> Result<[f32; 2], SpecError> {
@@ -186,21 +197,24 @@ fn point(o: &Obj, key: &str) -> Result<[f32; 2], SpecError> {
     ])
 }
 
-/// A direction, normalised; zero length is an error (z ≤ 0 is allowed and evaluates to 0).
+/// A direction, normalised in f64 unless it is already unit within the kernel's
+/// `UNIT_TOLERANCE` (then used as given, so f32 inputs are not rounded twice); zero length is
+/// an error (z ≤ 0 is allowed and evaluates to 0).
 fn direction(o: &Obj, key: &str) -> Result<[f32; 3], SpecError> {
     let d = o.vec::<3>(key)?;
-    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    if !(len > 0.0 && len.is_finite()) {
+    let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if !(l2 > 0.0 && l2.is_finite()) {
         return Err(SpecError::field(
             o.path_of(key),
             "direction must have non-zero, finite length",
         ));
     }
-    Ok([
-        (d[0] / len) as f32,
-        (d[1] / len) as f32,
-        (d[2] / len) as f32,
-    ])
+    let s = if (l2 - 1.0).abs() <= f64::from(UNIT_TOLERANCE) {
+        1.0
+    } else {
+        1.0 / l2.sqrt()
+    };
+    Ok([(d[0] * s) as f32, (d[1] * s) as f32, (d[2] * s) as f32])
 }
 
 fn material(v: &Value, path: &str) -> Result<Material, SpecError> {
