@@ -3,6 +3,7 @@
 use crate::dispatch::{Dispatched, Input, Timings};
 use crate::error::Result;
 use crate::gpu::Gpu;
+use scratchwave_cpu::ScratchLookup;
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::scratch::Scratch;
 use scratchwave_kernel::table::{Model, TableParams, TableQuery};
@@ -25,12 +26,28 @@ pub struct FootprintRow {
 type Column = fn(&mut FootprintRow) -> &mut f32;
 
 impl Gpu {
-    /// Evaluates every query against the scratch set (brute-force lookup, as on the CPU):
-    /// `kernel::table::evaluate` in the entry point of `params.model`.
+    /// Evaluates every query against the scratch set: builds the BVH lookup on the CPU
+    /// (as the CPU backend does) and runs [`Gpu::evaluate_table_with`].
     pub fn evaluate_table(
         &self,
         params: &TableParams,
         scratches: &[Scratch],
+        queries: &[TableQuery],
+    ) -> Result<Dispatched<f32>> {
+        self.evaluate_table_with(
+            params,
+            &ScratchLookup::new(scratches, params.sigma_um),
+            queries,
+        )
+    }
+
+    /// Evaluates every query with a lookup built beforehand (reuse it across tables of the
+    /// same scratches): `kernel::table::evaluate` in the entry point of `params.model`,
+    /// traversing the uploaded BVH nodes and slot-ordered scratches.
+    pub fn evaluate_table_with(
+        &self,
+        params: &TableParams,
+        lookup: &ScratchLookup,
         queries: &[TableQuery],
     ) -> Result<Dispatched<f32>> {
         let entry = match Model::from_u32(params.model) {
@@ -40,7 +57,8 @@ impl Gpu {
         };
         let inputs = [
             Input::whole(std::slice::from_ref(params)),
-            Input::whole(scratches),
+            Input::whole(lookup.nodes()),
+            Input::whole(lookup.scratches()),
             Input::per_item(queries),
         ];
         self.dispatch(entry, &inputs, queries.len())

@@ -11,28 +11,24 @@ mod common;
 
 use scratchwave_cpu::{Backend, evaluate_table, footprint_table};
 use scratchwave_kernel::footprint::Ellipse;
-use scratchwave_kernel::scratch::Scratch;
+use scratchwave_kernel::scratch::{Profile, Scratch};
 use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery};
 
 const REL_TOL: f32 = 1e-4;
 const FLOOR: f32 = 1e-6;
 
-/// A few scratches around the origin: both profiles, crossing, one degenerate (zero length).
+/// A few scratches around the origin: both profiles, crossing, one degenerate (zero length),
+/// one far away (outside every query's 6σ radius, so the BVH must prune it).
 fn scratches() -> Vec<Scratch> {
-    let s = |p0: [f32; 2], p1: [f32; 2], width: f32, depth: f32, profile: u32| Scratch {
-        p0,
-        p1,
-        width,
-        depth,
-        profile,
-        pad: 0,
+    let s = |p0: [f64; 2], p1: [f64; 2], width: f32, depth: f32, profile: Profile| {
+        Scratch::from_endpoints(p0, p1, width, depth, profile)
     };
     vec![
-        s([-40.0, -3.0], [45.0, 4.0], 1.5, 0.35, 0),
-        s([-10.0, -30.0], [12.0, 35.0], 0.8, 0.12, 1),
-        s([5.0, -2.0], [25.0, -1.0], 2.5, 0.6, 0),
-        s([-20.0, 8.0], [-20.0, 8.0], 1.0, 0.2, 0),
-        s([60.0, 60.0], [90.0, 70.0], 1.0, 0.2, 1),
+        s([-40.0, -3.0], [45.0, 4.0], 1.5, 0.35, Profile::Rect),
+        s([-10.0, -30.0], [12.0, 35.0], 0.8, 0.12, Profile::Triangle),
+        s([5.0, -2.0], [25.0, -1.0], 2.5, 0.6, Profile::Rect),
+        s([-20.0, 8.0], [-20.0, 8.0], 1.0, 0.2, Profile::Rect),
+        s([600.0, 600.0], [900.0, 700.0], 1.0, 0.2, Profile::Triangle),
     ]
 }
 

@@ -18,6 +18,7 @@
 pub mod probe;
 
 use bytemuck::{Pod, Zeroable};
+use scratchwave_kernel::bvh::BvhNode;
 use scratchwave_kernel::footprint::{self, Ellipse};
 use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
 use scratchwave_kernel::table::{self, Model, TableParams, TableQuery};
@@ -48,12 +49,21 @@ const WERNER_BLENDED: u32 = Model::WernerBlended as u32;
 const VELINOV: u32 = Model::Velinov as u32;
 
 /// [`table::evaluate`] with the model fixed to `model` (a [`Model`] id): one BRDF value per
-/// query, the scratches looked up by brute force exactly as the CPU backend does.
+/// query.
+///
+/// The host uploads the CPU backend's lookup: BVH `nodes` and the scratches in slot order.
+/// Interim: the scratches are scanned in slot order ([`ScratchSlice`]) instead of through
+/// `ScratchBvh`, whose `scratches.get(slot)` (kernel/src/scratch/set.rs) rust-gpu cannot
+/// compile (`Option<&T>` from a storage buffer: "cannot convert pointers to integers").
+/// The scan visits the same scratches in the same order as the BVH traversal (slots are
+/// numbered in depth-first leaf order and both apply the same exact distance test), so the
+/// sums are the CPU's; only the cost is O(n) instead of O(log n) per query.
 #[inline]
 fn table_entry(
     model: u32,
     id: UVec3,
     params: &[TableParams],
+    _nodes: &[BvhNode],
     scratches: &[Scratch],
     queries: &[TableQuery],
     out: &mut [f32],
@@ -70,11 +80,12 @@ fn table_entry(
 pub fn table_werner(
     #[spirv(global_invocation_id)] id: UVec3,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[TableParams],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] queries: &[TableQuery],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] queries: &[TableQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] out: &mut [f32],
 ) {
-    table_entry(WERNER, id, params, scratches, queries, out);
+    table_entry(WERNER, id, params, nodes, scratches, queries, out);
 }
 
 /// BRDF table, Werner §5 (coherent scratches only, for blending with a base BRDF).
@@ -82,11 +93,12 @@ pub fn table_werner(
 pub fn table_werner_blended(
     #[spirv(global_invocation_id)] id: UVec3,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[TableParams],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] queries: &[TableQuery],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] queries: &[TableQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] out: &mut [f32],
 ) {
-    table_entry(WERNER_BLENDED, id, params, scratches, queries, out);
+    table_entry(WERNER_BLENDED, id, params, nodes, scratches, queries, out);
 }
 
 /// BRDF table, Velinov Eq. 7 (incoherent sum of single-scratch responses).
@@ -94,11 +106,12 @@ pub fn table_werner_blended(
 pub fn table_velinov(
     #[spirv(global_invocation_id)] id: UVec3,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[TableParams],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] scratches: &[Scratch],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] queries: &[TableQuery],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] queries: &[TableQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] out: &mut [f32],
 ) {
-    table_entry(VELINOV, id, params, scratches, queries, out);
+    table_entry(VELINOV, id, params, nodes, scratches, queries, out);
 }
 
 /// Parameters of the footprint entry points.
