@@ -1,0 +1,144 @@
+//! Table throughput: lavapipe (or the adapter `SCRATCHWAVE_ADAPTER` picks) against the CPU
+//! backend's scalar and simd+rayon paths, for N queries (default 10⁶) of each model.
+//!
+//! `cargo run --release -p scratchwave-spirv --example throughput [-- N SCRATCHES]`
+//!
+//! "scan" is the CPU running what the GPU runs for now (the scratches in slot order instead
+//! of the BVH traversal, see the shader crate), to separate the lookup from the device.
+//! GPU times are split as the dispatch API reports them (pipeline compilation excluded by
+//! a warm-up run); "incl." adds upload and readback. The scratch lookup (BVH) is built once
+//! on the CPU and shared by both sides, so neither side's time includes it.
+
+use scratchwave_cpu::parallel::map;
+use scratchwave_cpu::{Backend, ScratchLookup};
+use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
+use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery, evaluate};
+use scratchwave_spirv::Gpu;
+use std::time::{Duration, Instant};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut args = std::env::args().skip(1);
+    let n: usize = args.next().map_or(Ok(1_000_000), |s| s.parse())?;
+    let count: usize = args.next().map_or(Ok(64), |s| s.parse())?;
+    let gpu = Gpu::new()?;
+    let scratches = scratches(count);
+    let queries = queries(n);
+    println!(
+        "adapter: {}; {n} queries, {count} scratches in a 200 µm square, σ = 10 µm, {} rayon threads\n",
+        gpu.adapter(),
+        rayon::current_num_threads()
+    );
+    println!(
+        "| model | CPU scalar Mq/s | CPU simd+rayon Mq/s | CPU simd+rayon, scan Mq/s | GPU dispatch Mq/s | GPU incl. upload+readback Mq/s | upload ms | dispatch ms | readback ms | max rel diff vs CPU |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    for model in [Model::Werner, Model::WernerBlended, Model::Velinov] {
+        let params = TableParams {
+            model: model as u32,
+            sigma_um: 10.0,
+            ..Default::default()
+        };
+        let lookup = ScratchLookup::new(&scratches, params.sigma_um);
+        let set = lookup.set();
+        let timed = |backend| {
+            let start = Instant::now();
+            let out = map(backend, &queries, |q| evaluate(&params, q, &set));
+            (out, start.elapsed())
+        };
+        let (_, scalar) = timed(Backend::Scalar);
+        let (cpu, simd) = timed(Backend::Simd);
+        // What the GPU runs for now: a scan of the scratches in slot order.
+        let scan_set = ScratchSlice {
+            scratches: lookup.scratches(),
+        };
+        let start = Instant::now();
+        let _ = map(Backend::Simd, &queries, |q| evaluate(&params, q, &scan_set));
+        let simd_scan = start.elapsed();
+        gpu.evaluate_table_with(&params, &lookup, &queries[..1024.min(n)])?; // compile the pipeline
+        let run = gpu.evaluate_table_with(&params, &lookup, &queries)?;
+        let t = run.timings;
+        let rate = |d: Duration| n as f64 / d.as_secs_f64() / 1e6;
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        println!(
+            "| {model:?} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} | {:.1} | {:.2e} |",
+            rate(scalar),
+            rate(simd),
+            rate(simd_scan),
+            rate(t.dispatch),
+            rate(t.total()),
+            ms(t.upload),
+            ms(t.dispatch),
+            ms(t.readback),
+            max_rel_diff(&cpu, &run.output),
+        );
+    }
+    Ok(())
+}
+
+/// `count` scratches with pseudo-random positions, directions and sizes (fixed seed).
+fn scratches(count: usize) -> Vec<Scratch> {
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|i| {
+            let c = [200.0 * next() - 100.0, 200.0 * next() - 100.0];
+            let angle = std::f64::consts::PI * next();
+            let half = 5.0 + 60.0 * next();
+            let d = [half * angle.cos(), half * angle.sin()];
+            let profile = if i % 2 == 0 {
+                Profile::Rect
+            } else {
+                Profile::Triangle
+            };
+            Scratch::from_endpoints(
+                [c[0] - d[0], c[1] - d[1]],
+                [c[0] + d[0], c[1] + d[1]],
+                0.5 + 2.0 * next() as f32,
+                0.05 + 0.5 * next() as f32,
+                profile,
+            )
+        })
+        .collect()
+}
+
+/// `n` queries: viewing directions on a spiral, fixed light, shading points on a grid.
+fn queries(n: usize) -> Vec<TableQuery> {
+    (0..n)
+        .map(|i| {
+            let t = i as f32 / n as f32;
+            let theta = 1.3 * t.sqrt();
+            let phi = 2_399.963 * t;
+            let side = (n as f32).sqrt().max(1.0) as usize;
+            TableQuery {
+                wi: [0.3, 0.1, 0.95],
+                lambda_nm: 400.0 + 300.0 * ((i * 7919) % 1000) as f32 / 1000.0,
+                wo: [
+                    theta.sin() * phi.cos(),
+                    theta.sin() * phi.sin(),
+                    theta.cos(),
+                ],
+                x: [
+                    200.0 * (i % side) as f32 / side as f32 - 100.0,
+                    200.0 * (i / side % side) as f32 / side as f32 - 100.0,
+                ],
+                material: Material::ior(0.2, 3.5, FresnelAngle::ThetaD),
+                ..Default::default()
+            }
+        })
+        .collect()
+}
+
+/// Max relative difference where the CPU value exceeds 1e-6 of the table maximum.
+fn max_rel_diff(cpu: &[f32], gpu: &[f32]) -> f32 {
+    let max = cpu.iter().fold(0.0_f32, |m, v| m.max(v.abs()));
+    cpu.iter()
+        .zip(gpu)
+        .filter(|(c, _)| c.abs() > 1e-6 * max)
+        .map(|(c, g)| (c - g).abs() / c.abs())
+        .fold(0.0, f32::max)
+}
