@@ -12,7 +12,9 @@
 
 pub mod footprint;
 pub mod fresnel;
+pub mod ghs;
 pub mod math;
+pub mod sampling;
 pub mod scratch;
 pub mod table;
 
