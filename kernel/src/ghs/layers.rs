@@ -82,7 +82,9 @@ fn plastic_series(rho_d: f32, n: f32, form: LayerForm) -> f32 {
     let f_int = fresnel_diffuse_reflectance(1.0 / n);
     match form {
         LayerForm::Published => 1.0 / (1.0 - rho_d * (1.0 / math::PI) * f_int),
-        LayerForm::EnergyConserving => 1.0 / (n * n * (1.0 - rho_d * f_int)),
+        // a white base under total internal reflection (F_int → 1) traps light: bound the
+        // geometric series at 10⁴ bounces' worth
+        LayerForm::EnergyConserving => 1.0 / (n * n * math::max(1.0 - rho_d * f_int, 1.0e-4)),
     }
 }
 

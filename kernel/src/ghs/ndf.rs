@@ -49,7 +49,13 @@ impl GenBeckmann {
         }
         let c2 = math::min(cos_h * cos_h, 1.0);
         let tan2 = (1.0 - c2) / c2;
-        self.p22(tan2) / (c2 * c2)
+        let den = c2 * c2;
+        let p22 = self.p22(tan2);
+        // cos⁴θ underflows only for θ within 1e-9 of grazing, where P22 has long vanished
+        if !(p22 > 0.0) || !(den > 0.0) {
+            return 0.0;
+        }
+        p22 / den
     }
 
     /// `tanθh` of a sampled microfacet normal for `u ∈ [0, 1)` (upper-tail inverse, so
