@@ -30,7 +30,7 @@ OUT = os.path.join(ROOT, "kernel", "src", "ghs", "tables")
 
 LNV_MIN, LNV_MAX, NV = -8.0, 10.0, 160
 LNP_MIN, LNP_MAX, NP = math.log(0.1), math.log(4.0), 40
-GL_N = 32
+GL_N = 20
 
 
 def mean_slope(p):

@@ -20,7 +20,7 @@
 //! `φmax` the half-angle of the arc inside the disk (Eq. 62). The remaining integral runs
 //! over the CDF variable (which flattens the lobe's peak, however sharp `B` makes it) after
 //! a `1 − cos t` substitution (which removes the square-root endpoints of `φmax`), by a
-//! 32-point Gauss–Legendre rule. Error vs mpmath: see `reference/ghs/golden/` and
+//! 20-point Gauss–Legendre rule. Error vs mpmath: see `reference/ghs/golden/` and
 //! `kernel/tests/ghs_golden.rs`.
 
 use super::tables::gauss_legendre::{GL_N, GL_W, GL_X};
