@@ -23,7 +23,12 @@ fn queries() -> Vec<(Vec3, Vec3, [f32; 3])> {
     };
     (0..N)
         .map(|_| {
-            let (ti, pi, to, po) = (f() * 1.5, f() * 6.28, f() * 1.5, f() * 6.28);
+            let (ti, pi, to, po) = (
+                f() * 1.5,
+                f() * std::f32::consts::TAU,
+                f() * 1.5,
+                f() * std::f32::consts::TAU,
+            );
             let wi = Vec3::new(ti.sin() * pi.cos(), ti.sin() * pi.sin(), ti.cos());
             let wo = Vec3::new(to.sin() * po.cos(), to.sin() * po.sin(), to.cos());
             (wi, wo, [f(), f(), f()])
