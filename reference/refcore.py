@@ -493,6 +493,18 @@ def _unit(v):
     return [a / n for a in v]
 
 
+# Mirrors scratchwave_kernel::table::UNIT_TOLERANCE: a direction whose squared length is
+# within this of 1 is used as given (the tables store f32-rounded unit vectors, and the
+# kernel and CLI reader apply the same rule), so reference and kernel see identical inputs.
+UNIT_TOLERANCE = 4.0e-7
+
+
+def _direction(v):
+    v = [M(a) for a in v]
+    l2 = v[0] ** 2 + v[1] ** 2 + v[2] ** 2
+    return v if abs(l2 - 1) <= UNIT_TOLERANCE else _unit(v)
+
+
 def material_F(mat, wi, wo):
     if mat is None:
         return mpf(1)
@@ -519,8 +531,8 @@ def brdf(spec, q, flip_depth_sign=False, return_parts=False):
     (used only to show that a case discriminates the sign).
     """
     with mp.workdps(DPS + 10):
-        wi = _unit(q["wi"])
-        wo = _unit(q["wo"])
+        wi = _direction(q["wi"])
+        wo = _direction(q["wo"])
         if wi[2] <= 0 or wo[2] <= 0:
             return mpf(0)
         model = spec["model"]
