@@ -42,8 +42,10 @@ pub const BK7: RgbIor = RgbIor {
     k: [0.0; 3],
 };
 
-/// The single-wavelength parameters of `base` (its `n`, `k` ignored) with channel `ch` of `ior`.
+/// The single-wavelength parameters of `base` (its `n`, `k` ignored) with channel `ch` of `ior`
+/// (0 red, 1 green, 2 blue; larger values select blue).
 pub const fn channel(base: GhsParams, ior: &RgbIor, ch: usize) -> GhsParams {
+    let ch = if ch < 3 { ch } else { 2 };
     let mut p = base;
     p.n = ior.n[ch];
     p.k = ior.k[ch];
