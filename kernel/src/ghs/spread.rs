@@ -23,7 +23,7 @@
 //! 20-point Gauss–Legendre rule. Error vs mpmath: see `reference/ghs/golden/` and
 //! `kernel/tests/ghs_golden.rs`.
 
-use super::tables::gauss_legendre::{GL_N, GL_W, GL_X};
+use super::tables::gauss_legendre::{GL_N, GL_WS, GL_XI};
 use crate::math;
 
 /// K-correlation lobe in the projected-direction plane, `B = b/λ`, falloff `c > 1`.
@@ -93,16 +93,14 @@ impl KCorrelation {
         let mut sum = 0.0;
         let mut k = 0;
         while k < GL_N {
-            let t = math::PI * GL_X[k];
-            let (st, ct) = (math::sin(t), math::cos(t));
-            // ξ = (1 − cos t)/2 ∈ [0, 1]; v = v0 (1 − frac ξ); ln(1+B²r²) = −ln v / h.
-            let xi = 0.5 * (1.0 - ct);
-            let l = l0 - math::ln1p(-frac * xi) / h;
+            // ξ ∈ [0, 1]; v = v0 (1 − frac ξ); ln(1 + B²r²) = −ln v / h.
+            let l = l0 - math::ln1p(-frac * GL_XI[k]) / h;
             let r = self.radius_from_log_arg(l);
-            sum += GL_W[k] * 0.5 * st * phi_max(r, s);
+            sum += GL_WS[k] * phi_max(r, s);
             k += 1;
         }
-        // ∫ dW = Δ ∫_0^1 dξ = Δ ∫_0^π (sin t / 2) dt; the π of dt cancels the 1/π of φmax/π.
+        // ∫ (φmax/π) dW = Δ ∫₀¹ (φmax/π) dξ.
+        sum *= 1.0 / math::PI;
         math::clamp(w0 + delta * sum, 0.0, 1.0)
     }
 }
