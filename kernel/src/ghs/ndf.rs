@@ -76,6 +76,10 @@ impl GenBeckmann {
         if !(x > 0.0) {
             return 1.0;
         }
-        math::gamma_q(1.0 / self.p, math::exp(2.0 * self.p * math::ln(x)))
+        let y = math::exp(2.0 * self.p * math::ln(x));
+        if !y.is_finite() {
+            return 0.0;
+        }
+        math::gamma_q(1.0 / self.p, y)
     }
 }
