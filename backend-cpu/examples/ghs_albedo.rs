@@ -55,6 +55,24 @@ fn curves() -> Vec<(&'static str, &'static str, GhsParams, f32)> {
             0.526,
         ),
         (
+            "gold (645 nm), polished preset",
+            "#e6550d",
+            presets::channel(presets::POLISHED_METAL, &presets::GOLD, 0),
+            0.645,
+        ),
+        (
+            "gold (444 nm), polished preset",
+            "#3182bd",
+            presets::channel(presets::POLISHED_METAL, &presets::GOLD, 2),
+            0.444,
+        ),
+        (
+            "N-BK7 (526 nm), polished preset, no layer",
+            "#17becf",
+            presets::channel(presets::POLISHED_METAL, &presets::BK7, 1),
+            0.526,
+        ),
+        (
             "plastic ρd = 1, η 1.5, published (Eq. 49)",
             "#2ca02c",
             GhsParams::new(0.05, 0.1, 1.0, 3.0, 3.0, 1.5, 0.0).with_layer(
@@ -134,12 +152,12 @@ fn main() {
 }
 
 fn svg(thetas: &[f32], series: &[(&str, &str, Vec<f32>)]) -> String {
-    let (w, h, l, r, t, b) = (900.0, 560.0, 60.0, 20.0, 30.0, 250.0);
+    let (w, h, l, r, t, b) = (900.0, 620.0, 60.0, 20.0, 30.0, 310.0);
     let (ymin, ymax) = (0.0f32, 1.4f32);
     let x = |deg: f32| l + (w - l - r) * deg / 90.0;
     let y = |v: f32| t + (h - t - b) * (1.0 - (v.clamp(ymin, ymax) - ymin) / (ymax - ymin));
     let mut s = format!(
-        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n<text x='{l}' y='18' font-size='14'>GHS directional albedo a(θi) = ∫ρ cosθo dωo (λ = 526 nm; importance-sampled, 25.6k samples/point)</text>\n"
+        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n<text x='{l}' y='18' font-size='14'>GHS directional albedo a(θi) = ∫ρ cosθo dωo (λ = 526 nm unless named; importance-sampled, 25.6k samples/point)</text>\n"
     );
     for k in 0..=7 {
         let v = k as f32 * 0.2;
