@@ -37,7 +37,7 @@ fn curves() -> Vec<(&'static str, &'static str, GhsParams, f32)> {
             0.526,
         ),
         (
-            "mirror, rough preset",
+            "mirror, rough preset (off scale: 1.50 at 0°, 49 at 89°)",
             "#ff7f0e",
             mirror(presets::ROUGH_METAL),
             0.526,
@@ -56,13 +56,13 @@ fn curves() -> Vec<(&'static str, &'static str, GhsParams, f32)> {
         ),
         (
             "gold (645 nm), polished preset",
-            "#e6550d",
+            "#e377c2",
             presets::channel(presets::POLISHED_METAL, &presets::GOLD, 0),
             0.645,
         ),
         (
             "gold (444 nm), polished preset",
-            "#3182bd",
+            "#000080",
             presets::channel(presets::POLISHED_METAL, &presets::GOLD, 2),
             0.444,
         ),
