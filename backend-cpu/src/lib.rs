@@ -20,6 +20,7 @@
 
 pub mod bvh_build;
 pub mod fixtures;
+pub mod ghs;
 pub mod mesh;
 pub mod parallel;
 pub mod queries;
