@@ -13,11 +13,11 @@ use std::time::Duration;
 
 fn footprint(c: &mut Criterion) {
     let sigma = 10.0f32;
-    let mut r = Rng(11);
+    let mut r = Rng::new(11);
     let cases: Vec<(Scratch, Ellipse)> = (0..1024)
         .map(|_| {
-            let a = std::f64::consts::TAU * f64::from(r.u());
-            let h = [30.0, 300.0, 5000.0][(r.u() * 3.0) as usize % 3];
+            let a = std::f64::consts::TAU * f64::from(r.next_f32());
+            let h = [30.0, 300.0, 5000.0][(r.next_f32() * 3.0) as usize % 3];
             let s = Scratch::from_endpoints(
                 [-h * a.cos(), -h * a.sin()],
                 [h * a.cos(), h * a.sin()],
@@ -25,12 +25,12 @@ fn footprint(c: &mut Criterion) {
                 0.2,
                 Profile::Rect,
             );
-            let ratio = 10f32.powf(4.0 * r.u() - 2.0); // A_P/A_C in [0.01, 100]
-            let aspect = 1.0 + 7.0 * r.u();
+            let ratio = 10f32.powf(4.0 * r.next_f32() - 2.0); // A_P/A_C in [0.01, 100]
+            let aspect = 1.0 + 7.0 * r.next_f32();
             let ab = ratio * sigma * sigma; // a1 a2 = ratio σ²
             let e = Ellipse {
-                center: [sigma * (r.u() - 0.5), sigma * (r.u() - 0.5)],
-                angle_rad: 3.0 * r.u(),
+                center: [sigma * (r.next_f32() - 0.5), sigma * (r.next_f32() - 0.5)],
+                angle_rad: 3.0 * r.next_f32(),
                 a1: (ab * aspect).sqrt(),
                 a2: (ab / aspect).sqrt(),
                 ..Ellipse::default()
