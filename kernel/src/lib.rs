@@ -12,6 +12,7 @@
 
 pub mod footprint;
 pub mod fresnel;
+pub mod lights;
 pub mod math;
 pub mod scratch;
 pub mod table;
