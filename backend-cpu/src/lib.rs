@@ -8,6 +8,7 @@
 //!   written twice: the chunk function is generic over the kernel closure, so the compiler
 //!   instantiates the kernel code inside the AVX2 context.
 
+pub mod light_configs;
 pub mod light_reference;
 pub mod parallel;
 pub mod table;

@@ -46,8 +46,17 @@ impl BandCircle {
     /// (unit, `z > 0`); `None` when it degenerates to a point (`|wo_xy · t| = 1`).
     #[inline]
     pub fn new(tangent: Vec2, bitangent: Vec2, wo: Vec3) -> Option<BandCircle> {
+        BandCircle::new_offset(tangent, bitangent, wo, 0.0)
+    }
+
+    /// The parallel line `(wi + wo)_xy · t = offset` (direction cosines, i.e. ξ₁ = offset/λ).
+    #[inline]
+    pub fn new_offset(tangent: Vec2, bitangent: Vec2, wo: Vec3, offset: f32) -> Option<BandCircle> {
         let wo_xy = Vec2::new(wo.x, wo.y);
-        let c = -wo_xy.dot(tangent);
+        let c = offset - wo_xy.dot(tangent);
+        if !(c > -1.0 && c < 1.0) {
+            return None;
+        }
         let rho = math::sqrt0(1.0 - c * c);
         if !(rho > 0.0) {
             return None;

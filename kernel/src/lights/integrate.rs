@@ -124,8 +124,11 @@ pub struct LightParams {
     pub depth_term: u32,
     /// A [`SiMode`] as `u32`.
     pub si_mode: u32,
+    /// Bands across ξ₁ (see [`BandRule`]): 0 or 1 → Velinov's single band; 3 or 5 →
+    /// Gauss–Hermite bands.
+    pub bands: u32,
     /// Explicit padding.
-    pub pad: [u32; 4],
+    pub pad: [u32; 3],
 }
 
 const _: () = assert!(core::mem::size_of::<LightParams>() == 32);
@@ -183,6 +186,63 @@ impl LightRegion {
             LightRegion::Polygon(p) => p.center,
         };
         Vec3::new(c.x, c.y, math::max(c.z, 1.0e-3)).normalize_or_zero()
+    }
+}
+
+/// How the ξ₁ direction (across the band) is integrated.
+///
+/// Velinov's Eq. 27 evaluates the light's chord on the single line ξ₁ = 0 and multiplies
+/// by the whole Gaussian `∫ e^{−4π²σ²ξ₁²} dξ₁`. That is exact only when the chord does not
+/// change across the band; where a light edge cuts the band at an angle, or the light is
+/// not much wider than the band (`α ≲ 10 λ/(2πσ)`), the chord's curvature in ξ₁ makes it
+/// over- or under-estimate. The Gauss–Hermite rules evaluate the chord on 3 or 5 parallel
+/// lines `ξ₁ = x_k s` (`s = 1/(2√2 πσ)`, the Gaussian's standard deviation) and weight
+/// them, which is exact for chords polynomial in ξ₁ up to degree 5 or 9.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BandRule {
+    /// One band at ξ₁ = 0 (Velinov Eq. 27).
+    Single,
+    /// 3-point Gauss–Hermite (nodes 0, ±√3).
+    Hermite3,
+    /// 5-point Gauss–Hermite.
+    Hermite5,
+}
+
+impl BandRule {
+    /// Decodes [`LightParams::bands`].
+    #[inline]
+    pub fn from_u32(v: u32) -> BandRule {
+        match v {
+            3 => BandRule::Hermite3,
+            5 => BandRule::Hermite5,
+            _ => BandRule::Single,
+        }
+    }
+
+    /// Number of bands.
+    #[inline]
+    pub fn count(self) -> usize {
+        match self {
+            BandRule::Single => 1,
+            BandRule::Hermite3 => 3,
+            BandRule::Hermite5 => 5,
+        }
+    }
+
+    /// Node `i` (in standard deviations) and its weight (weights sum to 1).
+    #[inline]
+    pub fn node(self, i: usize) -> (f32, f32) {
+        match (self, i) {
+            (BandRule::Hermite3, 1) => (-1.732_050_807_568_877_2, 1.0 / 6.0),
+            (BandRule::Hermite3, 2) => (1.732_050_807_568_877_2, 1.0 / 6.0),
+            (BandRule::Hermite3, _) => (0.0, 2.0 / 3.0),
+            (BandRule::Hermite5, 1) => (-1.355_626_179_974_265_9, 0.222_075_922_005_612_6),
+            (BandRule::Hermite5, 2) => (1.355_626_179_974_265_9, 0.222_075_922_005_612_6),
+            (BandRule::Hermite5, 3) => (-2.856_970_013_872_805_6, 0.011_257_411_327_720_69),
+            (BandRule::Hermite5, 4) => (2.856_970_013_872_805_6, 0.011_257_411_327_720_69),
+            (BandRule::Hermite5, _) => (0.0, 0.533_333_333_333_333_3),
+            (BandRule::Single, _) => (0.0, 1.0),
+        }
     }
 }
 
@@ -284,11 +344,9 @@ pub fn scratch_band_power(
     gamma: f32,
     lambda: f32,
     si: SiMode,
+    rule: BandRule,
 ) -> f32 {
     let Some(frame) = scratch.frame() else {
-        return 0.0;
-    };
-    let Some(band) = BandCircle::new(frame.tangent, frame.bitangent, wo) else {
         return 0.0;
     };
     let across = Across {
@@ -299,10 +357,21 @@ pub fn scratch_band_power(
         lambda,
         si,
     };
+    // Standard deviation of the band in direction cosines: λ/(2√2 πσ).
+    let sd = lambda / (2.0 * math::SQRT_2 * math::PI * sigma);
     let mut sum = 0.0;
-    lit_intervals(region, &band, |s0, s1| {
-        sum += across_integral(&across, band.xi2(s0, lambda), band.xi2(s1, lambda));
-    });
+    let mut i = 0;
+    while i < rule.count() {
+        let (x, w) = rule.node(i);
+        if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, x * sd) {
+            let mut part = 0.0;
+            lit_intervals(region, &band, |s0, s1| {
+                part += across_integral(&across, band.xi2(s0, lambda), band.xi2(s1, lambda));
+            });
+            sum += w * part;
+        }
+        i += 1;
+    }
     sum * along_power(eta, &frame, x0, sigma)
 }
 
@@ -323,10 +392,11 @@ pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: 
     let gamma = DepthTerm::from_u32(params.depth_term).gamma(wc.z + wo.z);
     let eta = EtaMode::from_u32(params.eta);
     let si = SiMode::from_u32(params.si_mode);
+    let rule = BandRule::from_u32(params.bands);
     let x0 = Vec2::from_array(q.x);
     let mut power = 0.0;
     set.for_each_near(x0, CUTOFF_SIGMAS * sigma, |s: Scratch| {
-        power += scratch_band_power(&region, &s, wo, x0, eta, sigma, gamma, lambda, si);
+        power += scratch_band_power(&region, &s, wo, x0, eta, sigma, gamma, lambda, si, rule);
     });
     let f = q.material.reflectance(wc, wo);
     let r = f * power / (math::PI * sigma * sigma);

@@ -21,7 +21,8 @@ pub mod sphere;
 
 pub use band::{SiMode, band_antiderivative, band_integral};
 pub use integrate::{
-    LIGHT_POLYGON, LIGHT_SPHERE, Light, LightParams, LightQuery, LightRegion, light_integral,
+    BandRule, LIGHT_POLYGON, LIGHT_SPHERE, Light, LightParams, LightQuery, LightRegion,
+    light_integral,
 };
 pub use polygon::{MAX_VERTICES, SphericalPolygon};
 pub use si_fast::si_fast;
