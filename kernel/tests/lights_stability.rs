@@ -142,10 +142,9 @@ fn a_million_configurations_are_finite_and_non_negative() {
                 [light.sphere[0], light.sphere[1], light.sphere[2]]
             } else {
                 let k = light.count as usize;
-                let s = light.vertices[..k]
+                light.vertices[..k]
                     .iter()
-                    .fold([0.0f32; 3], |a, v| [a[0] + v[0], a[1] + v[1], a[2] + v[2]]);
-                s
+                    .fold([0.0f32; 3], |a, v| [a[0] + v[0], a[1] + v[1], a[2] + v[2]])
             };
             let l = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt().max(1e-30);
             let ct = -(c[0] * t[0] + c[1] * t[1]) / l;
