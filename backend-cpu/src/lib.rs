@@ -9,6 +9,7 @@
 //!   instantiates the kernel code inside the AVX2 context.
 
 pub mod light_configs;
+pub mod light_mc;
 pub mod light_reference;
 pub mod parallel;
 pub mod table;
