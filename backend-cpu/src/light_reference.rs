@@ -130,8 +130,8 @@ impl RefRegion {
         }
     }
 
-    /// Sample directions covering the region (for the bounding box).
-    fn samples(&self) -> Vec<V3> {
+    /// Sample directions covering the region (for bounding boxes).
+    pub fn samples(&self) -> Vec<V3> {
         let mut out = Vec::new();
         match self {
             RefRegion::Cone { axis, alpha } => {
@@ -402,8 +402,12 @@ pub fn light_reference_budget(
     };
     let b1 = breaks(lo1, hi1, &[-6.0 * sd, -2.0 * sd, 0.0, 2.0 * sd, 6.0 * sd]);
     let w = (scratch.width as f64).max(1e-3);
-    let lobes: Vec<f64> = (-4..=4).map(|k| k as f64 * lambda / w).collect();
-    let b2 = breaks(lo2, hi2, &lobes);
+    // Outer: 32 equal panels across the light plus the first sinc zeros, so no panel is
+    // wider than a 32nd of the light (a coarser start let GK15 settle on a wrong value with
+    // a small error estimate for lights a few band widths across).
+    let mut outer_pts: Vec<f64> = (-4..=4).map(|k| k as f64 * lambda / w).collect();
+    outer_pts.extend((1..32).map(|k| lo2 + (hi2 - lo2) * k as f64 / 32.0));
+    let b2 = breaks(lo2, hi2, &outer_pts);
     // Scale: the peak BRDF times the band's area in u.
     let peak = {
         let m = [-wo[0], -wo[1], wo[2]];
@@ -451,10 +455,9 @@ pub fn light_reference_budget(
             let mut inner = |u1: f64| (f(u1, u2), 0.0);
             let (mut v, mut e) = (0.0, 0.0);
             for (p, q) in pieces(u2) {
-                let br: Vec<f64> = std::iter::once(p)
-                    .chain(b1.iter().copied().filter(|x| *x > p && *x < q))
-                    .chain(std::iter::once(q))
-                    .collect();
+                let mut br: Vec<f64> = (0..=4).map(|k| p + (q - p) * k as f64 / 4.0).collect();
+                br.extend(b1.iter().copied().filter(|x| *x > p && *x < q));
+                br.sort_by(f64::total_cmp);
                 let (pv, pe) = adaptive(&mut inner, &br, 0.1 * tol / (hi2 - lo2), max_panels);
                 v += pv;
                 e += pe;
