@@ -8,6 +8,7 @@
 pub mod error;
 pub mod format;
 pub mod json;
+pub mod light_spec;
 pub mod run;
 pub mod spec;
 
