@@ -1,18 +1,20 @@
 //! BRDF tables and footprint tables on the CPU.
 
 use crate::parallel::{Backend, map};
+use crate::scratch_lookup::ScratchLookup;
 use scratchwave_kernel::footprint::{self, Ellipse};
-use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
+use scratchwave_kernel::scratch::Scratch;
 use scratchwave_kernel::table::{TableParams, TableQuery, evaluate};
 
-/// Evaluates every query against the scratch set (brute-force lookup).
+/// Evaluates every query against the scratch set (through the BVH lookup, built once).
 pub fn evaluate_table(
     backend: Backend,
     params: &TableParams,
     scratches: &[Scratch],
     queries: &[TableQuery],
 ) -> Vec<f32> {
-    let set = ScratchSlice { scratches };
+    let lookup = ScratchLookup::new(scratches, params.sigma_um);
+    let set = lookup.set();
     map(backend, queries, |q| evaluate(params, q, &set))
 }
 

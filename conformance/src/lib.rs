@@ -5,8 +5,10 @@
 //! conformance run that compares every backend with the committed high-precision
 //! references.
 
+pub mod backends;
 pub mod error;
 pub mod format;
+pub mod generate;
 pub mod json;
 pub mod light_spec;
 pub mod run;

@@ -5,14 +5,14 @@
 
 use scratchwave_conformance::error::SpecError;
 use scratchwave_conformance::format::g9;
-use scratchwave_conformance::{json, run, spec};
-use scratchwave_cpu::{Backend, evaluate_table, footprint_table};
+use scratchwave_conformance::{backends, json, run, spec};
+use scratchwave_cpu::{Backend, footprint_table};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const USAGE: &str = "usage:
   scratchwave run [--cases DIR] [--out DIR]      conformance run over the committed cases
-  scratchwave table SPEC.json [--backend cpu|simd]
+  scratchwave table SPEC.json [--backend cpu|simd|all]
   scratchwave footprint SPEC.json [--backend cpu|simd]";
 
 fn main() -> ExitCode {
@@ -27,12 +27,17 @@ fn main() -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::from(2)
         }
+        Err(Failure::Backend(e)) => {
+            eprintln!("error: backend failed: {e}");
+            ExitCode::from(1)
+        }
     }
 }
 
 enum Failure {
     Usage(String),
     Spec(SpecError),
+    Backend(String),
 }
 
 impl From<SpecError> for Failure {
@@ -67,19 +72,12 @@ fn parse_flags<'a>(args: &'a [String], allowed: &[&str]) -> Result<Parsed<'a>, F
     Ok((pos, flags))
 }
 
-fn backend(flags: &[(&str, &str)]) -> Result<Backend, Failure> {
-    match flags
+fn flag<'a>(flags: &[(&str, &'a str)], name: &str) -> Option<&'a str> {
+    flags
         .iter()
         .rev()
-        .find(|(f, _)| *f == "backend")
+        .find(|(f, _)| *f == name)
         .map(|(_, v)| *v)
-    {
-        None | Some("cpu") => Ok(Backend::Scalar),
-        Some("simd") => Ok(Backend::Simd),
-        Some(other) => Err(Failure::Usage(format!(
-            "unknown backend {other:?} (cpu, simd)"
-        ))),
-    }
 }
 
 fn read_json(path: &str) -> Result<serde_json::Value, SpecError> {
@@ -106,9 +104,13 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
         "table" => {
             let (pos, flags) = parse_flags(rest, &["backend"])?;
             let file = one_file(&pos, "table")?;
-            let b = backend(&flags)?;
+            let which = flag(&flags, "backend").unwrap_or("cpu");
             let s = spec::table_spec(&read_json(file)?)?;
-            let values = evaluate_table(b, &s.params, &s.scratches, &s.queries);
+            if which == "all" {
+                return table_all(&s);
+            }
+            let b = backends::by_name(which).map_err(Failure::Usage)?;
+            let values = b.evaluate(&s).map_err(Failure::Backend)?;
             let mut out = String::with_capacity(values.len() * 16);
             for v in values {
                 out += &g9(f64::from(v));
@@ -120,7 +122,15 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
         "footprint" => {
             let (pos, flags) = parse_flags(rest, &["backend"])?;
             let file = one_file(&pos, "footprint")?;
-            let b = backend(&flags)?;
+            let b = match flag(&flags, "backend") {
+                None | Some("cpu") => Backend::Scalar,
+                Some("simd") => Backend::Simd,
+                Some(other) => {
+                    return Err(Failure::Usage(format!(
+                        "unknown backend {other:?} (cpu, simd)"
+                    )));
+                }
+            };
             let s = spec::footprint_spec(&read_json(file)?)?;
             let rows = footprint_table(b, s.sigma_um, &s.queries);
             let mut out = String::from("eq15,eq16,accurate,rho_p\n");
@@ -142,17 +152,22 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             if !pos.is_empty() {
                 return Err(Failure::Usage("run takes no positional arguments".into()));
             }
-            let get = |k: &str| {
-                flags
-                    .iter()
-                    .rev()
-                    .find(|(f, _)| *f == k)
-                    .map(|(_, v)| PathBuf::from(v))
-            };
             let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-            let cases_dir = get("cases").unwrap_or_else(|| root.join("reference/golden/tables"));
-            let out_dir = get("out").unwrap_or_else(|| root.join("target/conformance"));
-            conformance_run(&cases_dir, &out_dir)
+            let mut dirs: Vec<PathBuf> = flags
+                .iter()
+                .filter(|(f, _)| *f == "cases")
+                .map(|(_, v)| PathBuf::from(v))
+                .collect();
+            if dirs.is_empty() {
+                dirs = vec![
+                    root.join("conformance/cases"),
+                    root.join("reference/golden/tables"),
+                ];
+            }
+            let out_dir = flag(&flags, "out")
+                .map(PathBuf::from)
+                .unwrap_or_else(|| root.join("target/conformance"));
+            conformance_run(&dirs, &out_dir)
         }
         "-h" | "--help" | "help" => {
             println!("{USAGE}");
@@ -162,27 +177,69 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
     }
 }
 
-fn conformance_run(cases_dir: &Path, out_dir: &Path) -> Result<ExitCode, Failure> {
-    let cases = run::load_cases(cases_dir)?;
+/// `--backend all`: every available backend, pairwise max abs/rel differences; exit 1 beyond
+/// the default tolerance.
+fn table_all(s: &spec::TableSpec) -> Result<ExitCode, Failure> {
+    let (list, notes) = backends::available();
+    for n in &notes {
+        eprintln!("note: {n}");
+    }
+    let case = run::Case {
+        name: "spec".into(),
+        description: String::new(),
+        spec: s.clone(),
+        expected: None,
+        rel_tol: run::DEFAULT_REL_TOL,
+        why: String::new(),
+    };
+    let report = run::run_case(&case, &list);
+    print!("{}", run::markdown(std::slice::from_ref(&report)));
+    let ok = report.errors.is_empty() && report.rows.iter().all(|r| r.pass);
+    Ok(if ok {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn conformance_run(dirs: &[PathBuf], out_dir: &Path) -> Result<ExitCode, Failure> {
+    let cases = run::load_cases(dirs)?;
     if cases.is_empty() {
         return Err(Failure::Spec(SpecError::Io {
-            path: cases_dir.display().to_string(),
+            path: format!("{dirs:?}"),
             msg: "no *.json cases".into(),
         }));
     }
+    let (list, notes) = backends::available();
+    let names: Vec<String> = list.iter().map(|b| b.name()).collect();
+    eprintln!("backends: {}", names.join(", "));
+    for n in &notes {
+        eprintln!("note: {n}");
+    }
     let mut reports = Vec::new();
     for (i, c) in cases.iter().enumerate() {
-        eprintln!("[{}/{}] {} — {}", i + 1, cases.len(), c.name, c.description);
-        reports.push(run::run_case(c)?);
+        eprintln!(
+            "[{}/{}] {} ({} queries) — {}",
+            i + 1,
+            cases.len(),
+            c.name,
+            c.spec.queries.len(),
+            c.description
+        );
+        reports.push(run::run_case(c, &list));
     }
     let md = run::markdown(&reports);
     println!("{md}");
     let failed = reports
         .iter()
         .flat_map(|r| &r.rows)
-        .filter(|r| !r.3)
-        .count();
-    let total: usize = reports.iter().map(|r| r.rows.len()).sum();
+        .filter(|r| !r.pass)
+        .count()
+        + reports.iter().map(|r| r.errors.len()).sum::<usize>();
+    let total = reports
+        .iter()
+        .map(|r| r.rows.len() + r.errors.len())
+        .sum::<usize>();
     println!("conformance: {} passed, {} failed", total - failed, failed);
     let io = |e: std::io::Error| {
         Failure::Spec(SpecError::Io {
@@ -191,9 +248,15 @@ fn conformance_run(cases_dir: &Path, out_dir: &Path) -> Result<ExitCode, Failure
         })
     };
     std::fs::create_dir_all(out_dir).map_err(io)?;
-    std::fs::write(out_dir.join("report.md"), &md).map_err(io)?;
-    let js = serde_json::to_string_pretty(&run::to_json(&reports)).unwrap_or_default();
-    std::fs::write(out_dir.join("report.json"), js).map_err(io)?;
+    let header = format!("backends: {}\n{}\n\n", names.join(", "), notes.join("\n"));
+    std::fs::write(out_dir.join("report.md"), header + &md).map_err(io)?;
+    let js =
+        serde_json::json!({"backends": names, "notes": notes, "cases": run::to_json(&reports)});
+    std::fs::write(
+        out_dir.join("report.json"),
+        serde_json::to_string_pretty(&js).unwrap_or_default(),
+    )
+    .map_err(io)?;
     eprintln!("wrote {}/report.{{md,json}}", out_dir.display());
     Ok(if failed == 0 {
         ExitCode::SUCCESS

@@ -1,32 +1,44 @@
 //! The conformance run: every committed case on every available backend, compared with the
-//! case's high-precision reference values and with each other.
+//! case's high-precision reference values (where it has them) and pairwise across backends.
 
 use crate::error::SpecError;
 use crate::format::g;
+use crate::generate::random_spec;
 use crate::json;
-use crate::spec::table_spec;
-use scratchwave_cpu::{Backend, evaluate_table};
+use crate::spec::{TableSpec, table_spec};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
-/// Default relative tolerance of a case against its reference, applied where the reference
-/// is above [`FLOOR`] times the case's maximum: the f32 kernel's target (issue #2).
+/// Default relative tolerance of a case, applied where the reference side is above
+/// [`FLOOR`] times the case's maximum: the f32 kernel's accuracy target (issue #2).
 pub const DEFAULT_REL_TOL: f64 = 1e-4;
-/// Values below this fraction of a case's maximum are compared in absolute terms only.
+/// Values below this fraction of a case's maximum are compared in absolute terms, relative
+/// to the maximum.
 pub const FLOOR: f64 = 1e-6;
 
-/// A committed case: a table spec, its reference values and its tolerance.
+/// A backend that evaluates table specs.
+pub trait TableBackend {
+    /// Short name (`cpu`, `simd`, `spirv`).
+    fn name(&self) -> String;
+    /// One value per query, in order.
+    fn evaluate(&self, spec: &TableSpec) -> Result<Vec<f32>, String>;
+}
+
+/// A committed case: a table spec (given or generated), optional reference values and the
+/// tolerance it declares, with the reason.
 pub struct Case {
     /// File name.
     pub name: String,
     /// What the case exercises.
     pub description: String,
-    /// The spec as JSON.
-    pub spec: Value,
-    /// Reference values (mpmath), one per query.
-    pub expected: Vec<f64>,
+    /// The expanded spec.
+    pub spec: TableSpec,
+    /// Reference values (mpmath), one per query, if the case has them.
+    pub expected: Option<Vec<f64>>,
     /// Relative tolerance above the floor.
     pub rel_tol: f64,
+    /// Why that tolerance.
+    pub why: String,
 }
 
 /// Agreement between two value lists.
@@ -36,8 +48,23 @@ pub struct Agreement {
     pub max_abs: f64,
     /// Largest |a − b| / |b| over values with |b| ≥ FLOOR · max|b|.
     pub max_rel: f64,
-    /// Largest |a − b| / max|b| over the rest (relative to the case maximum).
+    /// Largest |a − b| / max|b| over the rest.
     pub max_floor: f64,
+    /// ULP-distance histogram (f32): 0, 1, 2–4, 5–16, 17–256, > 256.
+    pub ulps: [usize; 6],
+}
+
+/// Distance in units in the last place between two f32 (0 for equal bits or ±0).
+pub fn ulp_distance(a: f32, b: f32) -> u64 {
+    let key = |x: f32| -> i64 {
+        let bits = x.to_bits() as i32;
+        i64::from(if bits < 0 { i32::MIN - bits } else { bits })
+    };
+    if a.is_nan() || b.is_nan() {
+        u64::MAX
+    } else {
+        key(a).abs_diff(key(b))
+    }
 }
 
 /// Compares `a` against `b` (the reference side).
@@ -52,65 +79,132 @@ pub fn agreement(a: &[f64], b: &[f64]) -> Agreement {
         } else if peak > 0.0 {
             r.max_floor = r.max_floor.max(d / peak);
         }
+        let u = ulp_distance(*x as f32, *y as f32);
+        let bin = match u {
+            0 => 0,
+            1 => 1,
+            2..=4 => 2,
+            5..=16 => 3,
+            17..=256 => 4,
+            _ => 5,
+        };
+        r.ulps[bin] += 1;
     }
     r
 }
 
-/// Loads every `*.json` case below `dir`, sorted by name.
-pub fn load_cases(dir: &Path) -> Result<Vec<Case>, SpecError> {
-    let io = |e: std::io::Error| SpecError::Io {
-        path: dir.display().to_string(),
+fn io_err(path: &Path, e: std::io::Error) -> SpecError {
+    SpecError::Io {
+        path: path.display().to_string(),
         msg: e.to_string(),
-    };
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(io)?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "json"))
-        .collect();
-    files.sort();
+    }
+}
+
+/// Loads every `*.json` case in each directory (sorted by name within a directory).
+pub fn load_cases(dirs: &[PathBuf]) -> Result<Vec<Case>, SpecError> {
     let mut cases = Vec::new();
-    for f in files {
-        let name = f
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        let text = std::fs::read_to_string(&f).map_err(|e| SpecError::Io {
-            path: f.display().to_string(),
-            msg: e.to_string(),
-        })?;
-        let v = json::parse(&text, &f.display().to_string())?;
-        let field = |k: &str| format!("{name}: {k}");
-        let expected = v
-            .get("expected")
-            .and_then(Value::as_array)
-            .ok_or_else(|| SpecError::field(field("expected"), "missing array"))?
-            .iter()
-            .enumerate()
-            .map(|(i, x)| json::number(x, &field(&format!("expected[{i}]"))))
-            .collect::<Result<Vec<_>, _>>()?;
-        let rel_tol = v
-            .get("tolerance")
-            .and_then(|t| t.get("rel"))
-            .and_then(Value::as_f64)
-            .unwrap_or(DEFAULT_REL_TOL);
-        let spec = v
-            .get("spec")
-            .cloned()
-            .ok_or_else(|| SpecError::field(field("spec"), "missing"))?;
-        let description = v
-            .get("description")
-            .and_then(Value::as_str)
-            .unwrap_or("")
-            .to_string();
-        cases.push(Case {
-            name,
-            description,
-            spec,
-            expected,
-            rel_tol,
-        });
+    for dir in dirs {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+            .map_err(|e| io_err(dir, e))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x == "json"))
+            .collect();
+        files.sort();
+        for f in files {
+            cases.push(load_case(&f)?);
+        }
     }
     Ok(cases)
+}
+
+/// Loads one case file: `{"description", "tolerance": {"rel", "why"}?, "spec" | "random",
+/// "expected"?}`.
+pub fn load_case(f: &Path) -> Result<Case, SpecError> {
+    let name = f
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let text = std::fs::read_to_string(f).map_err(|e| io_err(f, e))?;
+    let v = json::parse(&text, &f.display().to_string())?;
+    let o = json::Obj::new(
+        &v,
+        &name,
+        &["description", "tolerance", "spec", "random", "expected"],
+    )?;
+    let spec = match (o.get("spec"), o.get("random")) {
+        (Some(s), None) => table_spec(s).map_err(|e| prefix(e, &o.path_of("spec")))?,
+        (None, Some(r)) => random_spec(r, &o.path_of("random"))?,
+        _ => {
+            return Err(SpecError::field(
+                name,
+                "needs exactly one of \"spec\" and \"random\"",
+            ));
+        }
+    };
+    let expected = match o.get("expected") {
+        None => None,
+        Some(e) => {
+            let arr = e
+                .as_array()
+                .ok_or_else(|| SpecError::field(o.path_of("expected"), "expected an array"))?;
+            let vals = arr
+                .iter()
+                .enumerate()
+                .map(|(i, x)| json::number(x, &format!("{}[{i}]", o.path_of("expected"))))
+                .collect::<Result<Vec<_>, _>>()?;
+            if vals.len() != spec.queries.len() {
+                return Err(SpecError::field(
+                    o.path_of("expected"),
+                    format!("{} values for {} queries", vals.len(), spec.queries.len()),
+                ));
+            }
+            Some(vals)
+        }
+    };
+    let (rel_tol, why) = match o.get("tolerance") {
+        None => (
+            DEFAULT_REL_TOL,
+            "default: the f32 kernel's accuracy target".to_string(),
+        ),
+        Some(t) => {
+            let t = json::Obj::new(t, &o.path_of("tolerance"), &["rel", "why"])?;
+            let rel = t.num("rel")?;
+            let why = t.req("why")?.as_str().unwrap_or_default().to_string();
+            (rel, why)
+        }
+    };
+    let description = o
+        .get("description")
+        .and_then(Value::as_str)
+        .unwrap_or("")
+        .to_string();
+    Ok(Case {
+        name,
+        description,
+        spec,
+        expected,
+        rel_tol,
+        why,
+    })
+}
+
+fn prefix(e: SpecError, path: &str) -> SpecError {
+    match e {
+        SpecError::Field { field, msg } => SpecError::field(format!("{path}.{field}"), msg),
+        other => other,
+    }
+}
+
+/// One comparison row of a case.
+pub struct Row {
+    /// e.g. `cpu vs reference`, `cpu vs spirv`.
+    pub label: String,
+    /// The measured agreement.
+    pub agreement: Agreement,
+    /// Tolerance applied.
+    pub tol: f64,
+    /// Within tolerance.
+    pub pass: bool,
 }
 
 /// Result of one case.
@@ -119,77 +213,86 @@ pub struct CaseReport {
     pub name: String,
     /// Number of queries.
     pub queries: usize,
-    /// `(label, agreement, tolerance, pass)` per comparison.
-    pub rows: Vec<(String, Agreement, f64, bool)>,
+    /// Comparisons.
+    pub rows: Vec<Row>,
+    /// Backends that failed to run, with their error.
+    pub errors: Vec<(String, String)>,
 }
 
-/// Runs one case on the CPU backends.
-pub fn run_case(case: &Case) -> Result<CaseReport, SpecError> {
-    let spec = table_spec(&case.spec).map_err(|e| match e {
-        SpecError::Field { field, msg } => {
-            SpecError::field(format!("{}: spec.{field}", case.name), msg)
+/// Runs one case on every backend; compares each with the reference and each pair.
+pub fn run_case(case: &Case, backends: &[Box<dyn TableBackend>]) -> CaseReport {
+    let mut outputs: Vec<(String, Vec<f64>)> = Vec::new();
+    let mut errors = Vec::new();
+    for b in backends {
+        match b.evaluate(&case.spec) {
+            Ok(v) => outputs.push((b.name(), v.into_iter().map(f64::from).collect())),
+            Err(e) => errors.push((b.name(), e)),
         }
-        other => other,
-    })?;
-    if spec.queries.len() != case.expected.len() {
-        return Err(SpecError::field(
-            format!("{}: expected", case.name),
-            format!(
-                "{} values for {} queries",
-                case.expected.len(),
-                spec.queries.len()
-            ),
-        ));
     }
-    let eval = |b| -> Vec<f64> {
-        evaluate_table(b, &spec.params, &spec.scratches, &spec.queries)
-            .into_iter()
-            .map(f64::from)
-            .collect()
-    };
-    let cpu = eval(Backend::Scalar);
-    let simd = eval(Backend::Simd);
-    let tol = case.rel_tol;
-    // Backends run the same f32 code: they must agree far inside the accuracy tolerance.
-    let agree_tol = 1e-5;
     let mut rows = Vec::new();
-    for (label, a, b, t) in [
-        ("cpu vs reference", &cpu, &case.expected, tol),
-        ("simd vs reference", &simd, &case.expected, tol),
-        ("cpu vs simd", &cpu, &simd, agree_tol),
-    ] {
+    let mut push = |label: String, a: &[f64], b: &[f64]| {
         let ag = agreement(a, b);
-        rows.push((
-            label.to_string(),
-            ag,
-            t,
-            ag.max_rel <= t && ag.max_floor <= t,
-        ));
+        let pass = ag.max_rel <= case.rel_tol && ag.max_floor <= case.rel_tol;
+        rows.push(Row {
+            label,
+            agreement: ag,
+            tol: case.rel_tol,
+            pass,
+        });
+    };
+    if let Some(exp) = &case.expected {
+        for (n, v) in &outputs {
+            push(format!("{n} vs reference"), v, exp);
+        }
     }
-    Ok(CaseReport {
+    for i in 0..outputs.len() {
+        for j in i + 1..outputs.len() {
+            push(
+                format!("{} vs {}", outputs[i].0, outputs[j].0),
+                &outputs[i].1,
+                &outputs[j].1,
+            );
+        }
+    }
+    CaseReport {
         name: case.name.clone(),
-        queries: spec.queries.len(),
+        queries: case.spec.queries.len(),
         rows,
-    })
+        errors,
+    }
 }
 
 /// Renders reports as a Markdown table.
 pub fn markdown(reports: &[CaseReport]) -> String {
     let mut s = String::from(
-        "| case | queries | comparison | max abs | max rel (≥1e-6·max) | max abs/max (below) | tol | ok |\n|---|---|---|---|---|---|---|---|\n",
+        "| case | queries | comparison | max abs | max rel (≥1e-6·max) | below floor (÷max) | ULPs 0/1/2-4/5-16/17-256/>256 | tol | ok |\n|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in reports {
-        for (label, a, t, ok) in &r.rows {
+        for row in &r.rows {
+            let a = &row.agreement;
+            let u = a.ulps;
             s += &format!(
-                "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                "| {} | {} | {} | {} | {} | {} | {}/{}/{}/{}/{}/{} | {} | {} |\n",
                 r.name,
                 r.queries,
-                label,
+                row.label,
                 g(a.max_abs, 3),
                 g(a.max_rel, 3),
                 g(a.max_floor, 3),
-                g(*t, 2),
-                if *ok { "yes" } else { "**NO**" }
+                u[0],
+                u[1],
+                u[2],
+                u[3],
+                u[4],
+                u[5],
+                g(row.tol, 2),
+                if row.pass { "yes" } else { "**NO**" }
+            );
+        }
+        for (b, e) in &r.errors {
+            s += &format!(
+                "| {} | {} | {b} | — | — | — | — | — | **failed: {e}** |\n",
+                r.name, r.queries
             );
         }
     }
@@ -202,9 +305,22 @@ pub fn to_json(reports: &[CaseReport]) -> Value {
         reports
             .iter()
             .map(|r| {
-                json!({"case": r.name, "queries": r.queries, "comparisons": r.rows.iter().map(|(l, a, t, ok)| json!({
-                    "comparison": l, "max_abs": a.max_abs, "max_rel": a.max_rel, "max_floor": a.max_floor, "tol": t, "pass": ok
-                })).collect::<Vec<_>>()})
+                json!({
+                    "case": r.name,
+                    "queries": r.queries,
+                    "comparisons": r.rows.iter().map(|row| json!({
+                        "comparison": row.label,
+                        "max_abs": row.agreement.max_abs,
+                        "max_rel": row.agreement.max_rel,
+                        "max_below_floor": row.agreement.max_floor,
+                        "ulp_histogram": {"0": row.agreement.ulps[0], "1": row.agreement.ulps[1],
+                            "2-4": row.agreement.ulps[2], "5-16": row.agreement.ulps[3],
+                            "17-256": row.agreement.ulps[4], ">256": row.agreement.ulps[5]},
+                        "tol": row.tol,
+                        "pass": row.pass,
+                    })).collect::<Vec<_>>(),
+                    "errors": r.errors.iter().map(|(b, e)| json!({"backend": b, "error": e})).collect::<Vec<_>>(),
+                })
             })
             .collect(),
     )

@@ -20,6 +20,8 @@ pub struct TableSpec {
     pub scratches: Vec<Scratch>,
     /// Queries in input order.
     pub queries: Vec<TableQuery>,
+    /// The spec-level material (queries without their own use it).
+    pub default_material: Material,
 }
 
 /// A parsed `scratchwave footprint` spec.
@@ -105,6 +107,7 @@ pub fn table_spec(v: &Value) -> Result<TableSpec, SpecError> {
         params,
         scratches,
         queries,
+        default_material: material,
     })
 }
 

@@ -46,35 +46,36 @@ impl Ellipse {
     }
 }
 
-/// Length of the segment inside the ellipse (`l_contained`, Velinov Eq. 14): the segment is
-/// mapped to the ellipse's unit-circle frame and clipped there.
+/// Length of the segment inside the ellipse (`l_contained`, Velinov Eq. 14).
+///
+/// The line is parametrised by arc length from its point `m` closest to the ellipse centre
+/// and mapped to the ellipse's unit-circle frame, where `|q_m + s e|² = 1` is solved with
+/// the discriminant in the cancellation-free form `|e|² − (q_m × e)²` (the textbook form
+/// `b² − ac` loses everything to `f32` rounding for long segments and needle-thin ellipses).
 pub fn contained_length(s: &Scratch, e: &Ellipse) -> f32 {
-    let (sn, cs) = (math::sin(e.angle_rad), math::cos(e.angle_rad));
-    let c = Vec2::from_array(e.center);
-    let to_unit = |p: Vec2| {
-        let d = p - c;
-        Vec2::new((d.x * cs + d.y * sn) / e.a1, (-d.x * sn + d.y * cs) / e.a2)
-    };
-    let p0 = Vec2::from_array(s.p0);
-    let p1 = Vec2::from_array(s.p1);
-    let len = (p1 - p0).length();
-    if !(len > 0.0 && e.a1 > 0.0 && e.a2 > 0.0) {
+    let Some(f) = s.frame() else { return 0.0 };
+    if !(e.a1 > 0.0 && e.a2 > 0.0) {
         return 0.0;
     }
-    let q0 = to_unit(p0);
-    let d = to_unit(p1) - q0;
-    // |q0 + t d|² = 1 → a t² + 2 b t + c = 0
-    let a = d.length_squared();
-    let b = q0.dot(d);
-    let cc = q0.length_squared() - 1.0;
-    let disc = b * b - a * cc;
-    if !(disc > 0.0) || !(a > 0.0) {
+    let (sn, cs) = (math::sin(e.angle_rad), math::cos(e.angle_rad));
+    let to_unit = |d: Vec2| Vec2::new((d.x * cs + d.y * sn) / e.a1, (-d.x * sn + d.y * cs) / e.a2);
+    let c = Vec2::from_array(e.center);
+    let s_c = (c - f.center).dot(f.tangent); // arc length of m from the segment centre
+    let m = f.center + s_c * f.tangent;
+    let qm = to_unit(m - c);
+    let dir = to_unit(f.tangent);
+    let a = dir.length_squared();
+    let cross = qm.x * dir.y - qm.y * dir.x;
+    let disc = a - cross * cross;
+    if !(disc > 0.0 && a > 0.0) {
         return 0.0;
     }
     let r = math::sqrt(disc);
-    let t0 = math::max((-b - r) / a, 0.0);
-    let t1 = math::min((-b + r) / a, 1.0);
-    if t1 > t0 { (t1 - t0) * len } else { 0.0 }
+    let b = qm.dot(dir);
+    // Roots in arc length from m, clipped to the segment [−L/2 − s_c, L/2 − s_c].
+    let s0 = math::max((-b - r) / a, -f.half_len - s_c);
+    let s1 = math::min((-b + r) / a, f.half_len - s_c);
+    if s1 > s0 { s1 - s0 } else { 0.0 }
 }
 
 /// Perpendicular distance of the ellipse centre from the scratch's line (`s_b`).
@@ -157,24 +158,34 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
     n += 1;
     br[n] = 0.5 * math::PI;
     n += 1;
-    let features = [
-        -frame.half_len,
-        frame.half_len,
-        chord_crossing(eu, ev, qb, qc),
-    ];
+    // Segment ends: the along-scratch factor g(u) changes within a few σ of them.
+    let ends = [-frame.half_len, frame.half_len];
     let mut f = 0;
-    while f < 3 {
+    while f < 2 {
         let mut o = 0;
         while o < 5 {
-            let u = features[f] + OFFSETS[o] * sigma;
-            let r = (u - eu) / half_u;
-            if r > -1.0 && r < 1.0 && n < MAX_BREAKS {
-                br[n] = math::asin(r);
-                n += 1;
-            }
+            push_break(
+                &mut br,
+                &mut n,
+                (ends[f] + OFFSETS[o] * sigma - eu) / half_u,
+            );
             o += 1;
         }
         f += 1;
+    }
+    // Where the chords' midpoints v_c(u) = ev − (qb/qc)(u − eu) pass within a few σ of the
+    // scratch line: u − eu = (ev − v) qc/qb for v = OFFSETS·σ. None when the chords run
+    // parallel to the line (qb ≈ 0: v_c is constant).
+    if math::abs(qb) > 1.0e-12 * qc {
+        let mut o = 0;
+        while o < 5 {
+            push_break(
+                &mut br,
+                &mut n,
+                (ev - OFFSETS[o] * sigma) * qc / qb / half_u,
+            );
+            o += 1;
+        }
     }
     sort(&mut br, n);
     let mut total = 0.0;
@@ -210,14 +221,12 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
 /// 1/√2.
 const FRAC_1_SQRT_2: f32 = core::f32::consts::FRAC_1_SQRT_2;
 
-/// The `u` where the chords' midpoints cross the scratch line (`v = 0`), or the ellipse
-/// centre's `u` when the chords run parallel to the scratch line.
+/// Adds the panel boundary `θ = asin(r)` when `r = (u − eu)/U` lies inside the ellipse.
 #[inline]
-fn chord_crossing(eu: f32, ev: f32, qb: f32, qc: f32) -> f32 {
-    if math::abs(qb) > 1.0e-12 * qc {
-        eu + ev * qc / qb
-    } else {
-        eu
+fn push_break(br: &mut [f32; MAX_BREAKS], n: &mut usize, r: f32) {
+    if r > -1.0 && r < 1.0 && *n < MAX_BREAKS {
+        br[*n] = math::asin(r);
+        *n += 1;
     }
 }
 

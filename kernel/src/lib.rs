@@ -7,14 +7,36 @@
 //! Conventions (see `ARCHITECTURE.md`): the local shading frame has `z` as the surface
 //! normal; tangent-plane positions are in micrometres; `wi` (towards the light) and `wo`
 //! (towards the viewer) point away from the surface; `xi = (wi + wo)_xy / λ` in 1/µm.
+//!
+//! ```
+//! use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
+//! use scratchwave_kernel::table::{evaluate, Material, Model, TableParams, TableQuery};
+//!
+//! // One 2 µm wide, 0.3 µm deep V-groove through the shading point, along x.
+//! let scratches = [Scratch {
+//!     p0: [-200.0, 0.0], p1: [200.0, 0.0], width: 2.0, depth: 0.3,
+//!     profile: Profile::Triangle as u32, pad: 0,
+//! }];
+//! let params = TableParams { model: Model::Werner as u32, sigma_um: 10.0, ..Default::default() };
+//! // Light from the normal, viewer tilted across the scratch: first-order diffraction.
+//! let q = TableQuery {
+//!     wi: [0.0, 0.0, 1.0], wo: [0.0, 0.2, 0.98], lambda_nm: 550.0, x: [0.0, 0.0],
+//!     material: Material::constant(0.9), ..Default::default()
+//! };
+//! let f = evaluate(&params, &q, &ScratchSlice { scratches: &scratches });
+//! assert!(f > 0.0 && f.is_finite()); // BRDF in 1/sr, without the cosine
+//! ```
 #![no_std]
 #![cfg_attr(target_arch = "spirv", allow(internal_features))]
 
+pub mod bvh;
 pub mod footprint;
 pub mod fresnel;
 pub mod lights;
 pub mod math;
+pub mod ray;
 pub mod scratch;
+pub mod segment;
 pub mod table;
 
 pub use glam;

@@ -181,6 +181,7 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
         lambda,
         sigma,
         eta,
+        area_density: model == Model::Velinov && params.base_gaussian == 1,
     };
     let terms = scratch_response(set, &inputs);
     let f = q.material.reflectance(wi, wo);

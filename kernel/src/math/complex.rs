@@ -9,7 +9,8 @@ pub type C32 = Complex32;
 /// `e^{iθ}`.
 #[inline]
 pub fn cis(theta: f32) -> C32 {
-    C32::new(super::cos(theta), super::sin(theta))
+    let (s, c) = super::sin_cos(theta);
+    C32::new(c, s)
 }
 
 /// `1 − e^{iφ}`, evaluated as `−2i sin(φ/2) e^{iφ/2}` so it keeps full relative accuracy for

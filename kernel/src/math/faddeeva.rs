@@ -63,16 +63,40 @@ fn crecip(z: C32) -> C32 {
 /// real axis' upper side; callers in this crate only pass `Im z ≥ 0`). |w| ≤ 1 there.
 #[inline]
 pub fn faddeeva(z: C32) -> C32 {
-    let z = C32::new(z.re, super::max(z.im, 0.0));
-    let iz = cmul_i(z);
-    // q = 1/(L − iz); |L − iz| ≥ L so q never blows up, and q² underflows benignly.
-    let q = crecip(C32::new(L - iz.re, -iz.im));
-    let big_z = C32::new(L + iz.re, iz.im) * q;
-    let mut p = C32::new(COEFFS[0], 0.0);
+    faddeeva_lanes([z])[0]
+}
+
+/// `w(z)` for `N` independent arguments at once: the `N` Horner chains advance in the same
+/// loop, so their latencies overlap (and LLVM may pack the lanes into vector registers).
+/// The same formula as [`faddeeva`], which is this with `N = 1`.
+#[inline]
+pub fn faddeeva_lanes<const N: usize>(z: [C32; N]) -> [C32; N] {
+    let mut q = [C32::new(0.0, 0.0); N];
+    let mut big_z = [C32::new(0.0, 0.0); N];
+    let mut p = [C32::new(COEFFS[0], 0.0); N];
+    let mut l = 0;
+    while l < N {
+        let zl = C32::new(z[l].re, super::max(z[l].im, 0.0));
+        let iz = cmul_i(zl);
+        // q = 1/(L − iz); |L − iz| ≥ L so q never blows up, and q² underflows benignly.
+        q[l] = crecip(C32::new(L - iz.re, -iz.im));
+        big_z[l] = C32::new(L + iz.re, iz.im) * q[l];
+        l += 1;
+    }
     let mut k = 1;
     while k < 32 {
-        p = p * big_z + C32::new(COEFFS[k], 0.0);
+        let mut l = 0;
+        while l < N {
+            p[l] = p[l] * big_z[l] + C32::new(COEFFS[k], 0.0);
+            l += 1;
+        }
         k += 1;
     }
-    cscale(p * q * q, 2.0) + cscale(q, super::FRAC_1_SQRT_PI)
+    let mut out = [C32::new(0.0, 0.0); N];
+    let mut l = 0;
+    while l < N {
+        out[l] = cscale(p[l] * q[l] * q[l], 2.0) + cscale(q[l], super::FRAC_1_SQRT_PI);
+        l += 1;
+    }
+    out
 }

@@ -11,7 +11,7 @@ mod gauss_interval;
 mod si;
 
 pub use complex::{C32, cis, cmul_i, cscale, csqrt, one_minus_cis};
-pub use faddeeva::faddeeva;
+pub use faddeeva::{faddeeva, faddeeva_lanes};
 pub use gauss_interval::{erf, gauss_fourier_interval, gauss_interval};
 pub use si::{si, si_velinov};
 
@@ -60,6 +60,20 @@ pub fn sin(x: f32) -> f32 {
 #[inline]
 pub fn cos(x: f32) -> f32 {
     libm::cosf(x)
+}
+
+/// `(sin x, cos x)`. On the CPU one `libm::sincosf` call shares the argument reduction
+/// (same kernels as `sinf`/`cosf`); on SPIR-V the two GLSL.std.450 intrinsics.
+#[inline]
+pub fn sin_cos(x: f32) -> (f32, f32) {
+    #[cfg(target_arch = "spirv")]
+    {
+        (libm::sinf(x), libm::cosf(x))
+    }
+    #[cfg(not(target_arch = "spirv"))]
+    {
+        libm::sincosf(x)
+    }
 }
 
 /// Tangent.

@@ -28,7 +28,8 @@ pub struct ScratchTerms {
     pub coherent: C32,
     /// Incoherent sum `Σ |S_k|²` (Velinov Eq. 7), µm⁴.
     pub incoherent: f32,
-    /// Scratch area density ρc at `x0` (dimensionless; 1 for a fully scratched window).
+    /// Scratch area density ρc at `x0` (dimensionless; 1 for a fully scratched window);
+    /// 0 unless [`ResponseInputs::area_density`] asked for it.
     pub area_density: f32,
 }
 
@@ -47,6 +48,8 @@ pub struct ResponseInputs {
     pub sigma: f32,
     /// Finite or infinite spatial phase.
     pub eta: EtaMode,
+    /// Also accumulate ρc (costs two more `erf` evaluations per scratch).
+    pub area_density: bool,
 }
 
 /// Sums the scratch terms over every scratch within [`CUTOFF_SIGMAS`]·σ of `x0`.
@@ -65,7 +68,9 @@ pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTe
             let sk = m_p * eta(q.eta, &frame, q.x0, q.xi, sigma);
             terms.coherent += sk;
             terms.incoherent += sk.norm_sqr();
-            terms.area_density += area_density_of(&frame, s.width, q.x0, sigma);
+            if q.area_density {
+                terms.area_density += area_density_of(&frame, s.width, q.x0, sigma);
+            }
         }
     });
     terms

@@ -1,5 +1,6 @@
 //! The scratch record shared by CPU and GPU, and its local frame (Werner §3.1, Eq. 13).
 
+use crate::segment::Segment2;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
 
@@ -58,18 +59,16 @@ impl Scratch {
         })
     }
 
+    /// The bare segment (what the lookup structures index).
+    #[inline]
+    pub fn segment(&self) -> Segment2 {
+        Segment2::new(self.p0, self.p1)
+    }
+
     /// Distance from `x` to the closed segment (µm).
     #[inline]
     pub fn distance_to(&self, x: Vec2) -> f32 {
-        let p0 = Vec2::from_array(self.p0);
-        let d = Vec2::from_array(self.p1) - p0;
-        let l2 = d.length_squared();
-        let t = if l2 > 0.0 {
-            crate::math::clamp((x - p0).dot(d) / l2, 0.0, 1.0)
-        } else {
-            0.0
-        };
-        (p0 + t * d - x).length()
+        crate::math::sqrt(self.segment().distance2([x.x, x.y]))
     }
 }
 

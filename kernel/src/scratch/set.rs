@@ -5,6 +5,8 @@
 //! GPU run the same model code whatever the lookup.
 
 use super::segment::Scratch;
+use crate::bvh::{BvhNode, for_each_near_point};
+use core::ops::ControlFlow;
 use glam::Vec2;
 
 /// A set of scratches that can enumerate the ones within a radius of a point.
@@ -32,5 +34,30 @@ impl ScratchSet for ScratchSlice<'_> {
             }
             i += 1;
         }
+    }
+}
+
+/// The flattened BVH ([`crate::bvh`]) over the scratches' segment boxes: O(log n) per query.
+/// `scratches` must be in the builder's slot order (`scratchwave-cpu`'s `ScratchLookup`
+/// builds both); the GPU traverses the same two buffers with this same code.
+#[derive(Clone, Copy, Debug)]
+pub struct ScratchBvh<'a> {
+    /// Nodes in depth-first order.
+    pub nodes: &'a [BvhNode],
+    /// Scratches in slot order.
+    pub scratches: &'a [Scratch],
+}
+
+impl ScratchSet for ScratchBvh<'_> {
+    fn for_each_near<F: FnMut(Scratch)>(&self, x0: Vec2, radius: f32, mut visit: F) {
+        let scratches = self.scratches;
+        let _ = for_each_near_point(self.nodes, [x0.x, x0.y, 0.0], radius, |slot| {
+            if let Some(s) = scratches.get(slot as usize)
+                && s.distance_to(x0) <= radius
+            {
+                visit(*s);
+            }
+            ControlFlow::Continue(())
+        });
     }
 }

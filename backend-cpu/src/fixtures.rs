@@ -1,0 +1,190 @@
+//! Deterministic scenes, rays and segment sets for tests, benchmarks and the conformance
+//! suite. Everything is seeded; the same call gives the same data on every machine.
+
+use scratchwave_kernel::ray::Ray;
+use scratchwave_kernel::segment::Segment2;
+
+/// SplitMix64 (Steele et al. 2014): tiny, fast, and good enough for test data.
+#[derive(Clone, Debug)]
+pub struct SplitMix64(u64);
+
+impl SplitMix64 {
+    /// A generator started from `seed`.
+    pub fn new(seed: u64) -> SplitMix64 {
+        SplitMix64(seed)
+    }
+
+    /// The next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[0, 1)`, 24 random bits.
+    pub fn next_f32(&mut self) -> f32 {
+        (self.next_u64() >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
+    }
+
+    /// Uniform in `[lo, hi)`.
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next_f32()
+    }
+
+    /// Uniform on the unit sphere.
+    pub fn direction(&mut self) -> [f32; 3] {
+        let z = self.range(-1.0, 1.0);
+        let phi = self.range(0.0, core::f32::consts::TAU);
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        [r * phi.cos(), r * phi.sin(), z]
+    }
+}
+
+/// An indexed triangle mesh.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub vertices: Vec<[f32; 3]>,
+    /// One vertex-index triple per triangle, counter-clockwise seen from outside.
+    pub indices: Vec<[u32; 3]>,
+}
+
+/// A closed UV sphere centred at the origin: `2·segments·(rings − 1)` triangles, every edge
+/// shared by two triangles (rays through edges produce exact `t` ties).
+///
+/// # Panics
+/// If `rings < 2` or `segments < 3`.
+pub fn uv_sphere(rings: u32, segments: u32, radius: f32) -> Mesh {
+    assert!(rings >= 2 && segments >= 3, "degenerate sphere");
+    let mut vertices = vec![[0.0, 0.0, radius]];
+    for i in 1..rings {
+        let theta = core::f32::consts::PI * i as f32 / rings as f32;
+        for j in 0..segments {
+            let phi = core::f32::consts::TAU * j as f32 / segments as f32;
+            vertices.push([
+                radius * theta.sin() * phi.cos(),
+                radius * theta.sin() * phi.sin(),
+                radius * theta.cos(),
+            ]);
+        }
+    }
+    vertices.push([0.0, 0.0, -radius]);
+    let south = vertices.len() as u32 - 1;
+    let ring = |i: u32, j: u32| 1 + (i - 1) * segments + j % segments;
+    let mut indices = Vec::with_capacity((2 * segments * (rings - 1)) as usize);
+    for j in 0..segments {
+        indices.push([0, ring(1, j), ring(1, j + 1)]);
+    }
+    for i in 1..rings - 1 {
+        for j in 0..segments {
+            let (a, b, c, d) = (
+                ring(i, j),
+                ring(i, j + 1),
+                ring(i + 1, j),
+                ring(i + 1, j + 1),
+            );
+            indices.push([a, c, d]);
+            indices.push([a, d, b]);
+        }
+    }
+    for j in 0..segments {
+        indices.push([south, ring(rings - 1, j + 1), ring(rings - 1, j)]);
+    }
+    Mesh { vertices, indices }
+}
+
+/// A unit UV sphere with about `triangles` triangles (at least 12).
+pub fn sphere_with(triangles: usize) -> Mesh {
+    let rings = ((triangles as f64 / 4.0).sqrt().round() as u32).max(2);
+    uv_sphere(rings, 2 * rings, 1.0)
+}
+
+/// `n` independent random triangles in `[-1, 1]³`, edges up to `8/√n` long so that a ray
+/// crossing the cube meets a few of them whatever `n` is. No shared edges.
+pub fn triangle_soup(n: usize, seed: u64) -> Mesh {
+    let mut rng = SplitMix64::new(seed);
+    let size = 8.0 / (n.max(1) as f32).sqrt();
+    let mut vertices = Vec::with_capacity(3 * n);
+    for _ in 0..n {
+        let c = [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ];
+        for _ in 0..3 {
+            let d = rng.direction();
+            let s = size * rng.range(0.3, 1.0);
+            vertices.push([c[0] + s * d[0], c[1] + s * d[1], c[2] + s * d[2]]);
+        }
+    }
+    let indices = (0..n as u32)
+        .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+        .collect();
+    Mesh { vertices, indices }
+}
+
+/// Incoherent rays: origins uniform in `[-1.5, 1.5]³`, directions uniform on the sphere.
+pub fn random_rays(n: usize, seed: u64) -> Vec<Ray> {
+    let mut rng = SplitMix64::new(seed);
+    (0..n)
+        .map(|_| {
+            let o = [
+                rng.range(-1.5, 1.5),
+                rng.range(-1.5, 1.5),
+                rng.range(-1.5, 1.5),
+            ];
+            Ray::new(o, rng.direction())
+        })
+        .collect()
+}
+
+/// Coherent primary rays of a `width × height` pinhole camera at `(0, 0, -3)` looking
+/// along +z, with image-plane half-extent `half_extent` at distance 1 (0.4 frames the unit
+/// sphere). Emitted in 4 × 4 pixel tiles, so any aligned run of 4, 8 or 16 rays is a compact
+/// screen-space block (a good packet).
+///
+/// # Panics
+/// If `width` or `height` is not a multiple of 4.
+pub fn camera_rays(width: usize, height: usize, half_extent: f32) -> Vec<Ray> {
+    assert!(
+        width.is_multiple_of(4) && height.is_multiple_of(4),
+        "tiles are 4 × 4"
+    );
+    let mut rays = Vec::with_capacity(width * height);
+    for ty in (0..height).step_by(4) {
+        for tx in (0..width).step_by(4) {
+            for y in ty..ty + 4 {
+                for x in tx..tx + 4 {
+                    let u = ((x as f32 + 0.5) / width as f32 * 2.0 - 1.0) * half_extent;
+                    let v = ((y as f32 + 0.5) / height as f32 * 2.0 - 1.0) * half_extent;
+                    rays.push(Ray::new([0.0, 0.0, -3.0], [u, v, 1.0]));
+                }
+            }
+        }
+    }
+    rays
+}
+
+/// `n` segments in the square `[0, extent)²`, uniform start points, uniform directions,
+/// lengths uniform in `[0, max_len)`.
+pub fn random_segments(n: usize, seed: u64, extent: f32, max_len: f32) -> Vec<Segment2> {
+    let mut rng = SplitMix64::new(seed);
+    (0..n)
+        .map(|_| {
+            let a = [rng.range(0.0, extent), rng.range(0.0, extent)];
+            let phi = rng.range(0.0, core::f32::consts::TAU);
+            let len = rng.range(0.0, max_len);
+            Segment2::new(a, [a[0] + len * phi.cos(), a[1] + len * phi.sin()])
+        })
+        .collect()
+}
+
+/// `n` points uniform in `[0, extent)²`.
+pub fn random_points(n: usize, seed: u64, extent: f32) -> Vec<[f32; 2]> {
+    let mut rng = SplitMix64::new(seed);
+    (0..n)
+        .map(|_| [rng.range(0.0, extent), rng.range(0.0, extent)])
+        .collect()
+}

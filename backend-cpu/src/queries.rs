@@ -1,0 +1,39 @@
+//! The query interfaces shared by every CPU-side acceleration structure: the portable
+//! kernel hierarchy ([`crate::TriangleBvh`], [`crate::SegmentBvh`]) and Embree
+//! (`scratchwave-embree`). A renderer or the conformance suite holds a `&dyn RayQueries` or a
+//! generic `Q: RayQueries` and does not care which one it got.
+
+use scratchwave_kernel::ray::{Hit, Ray};
+
+/// Closest-hit and occlusion ray queries against one static scene. Implementations are
+/// `Sync`: queries take `&self` and may run from many threads at once (rayon).
+///
+/// Hits are raw geometry ([`Hit`]: `t`, ids, barycentrics, unnormalized geometric normal);
+/// shading stays in the kernel. When two primitives are hit at exactly the same `t` (a ray
+/// through a shared edge), implementations may report either.
+pub trait RayQueries: Sync {
+    /// The closest hit with `t ∈ (ray.t_near, ray.t_far]`.
+    fn closest_hit(&self, ray: &Ray) -> Option<Hit>;
+
+    /// `true` if anything is hit with `t ∈ (ray.t_near, ray.t_far]` (shadow rays).
+    fn occluded(&self, ray: &Ray) -> bool;
+
+    /// Closest hits of many rays; `hits[i]` answers `rays[i]`. Implementations may trace
+    /// groups of rays together (Embree packets), so pass coherent rays in screen-space tiles.
+    ///
+    /// # Panics
+    /// If `rays` and `hits` differ in length.
+    fn closest_hits(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+        assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
+        for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
+            *hit = self.closest_hit(ray);
+        }
+    }
+}
+
+/// "Every scratch segment within `radius` of the point `p`" in the tangent plane.
+pub trait SegmentRadiusQuery: Sync {
+    /// Clears `out`, then fills it with the ids (input order) of all segments whose distance
+    /// to `p` is at most `radius`, in no particular order.
+    fn segments_within(&self, p: [f32; 2], radius: f32, out: &mut Vec<u32>);
+}

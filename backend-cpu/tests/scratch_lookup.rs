@@ -1,0 +1,125 @@
+//! The scratch lookup returns exactly the brute-force set "every scratch within r of x0",
+//! and the models give the same values through it as through a plain slice.
+
+use glam::Vec2;
+use scratchwave_cpu::ScratchLookup;
+use scratchwave_kernel::scratch::{Scratch, ScratchSet, ScratchSlice};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
+
+struct Rng(u64);
+impl Rng {
+    fn u(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// `n` scratches over a square of side `extent` µm, lengths from 0 to 400 µm.
+fn field(n: usize, extent: f32, seed: u64) -> Vec<Scratch> {
+    let mut r = Rng(seed);
+    (0..n)
+        .map(|_| {
+            let c = [extent * r.u(), extent * r.u()];
+            let a = std::f32::consts::TAU * r.u();
+            let h = 200.0 * r.u() * r.u();
+            Scratch {
+                p0: [c[0] - h * a.cos(), c[1] - h * a.sin()],
+                p1: [c[0] + h * a.cos(), c[1] + h * a.sin()],
+                width: 1.0,
+                depth: 0.2,
+                ..Scratch::default()
+            }
+        })
+        .collect()
+}
+
+fn collect<S: ScratchSet>(s: &S, x: Vec2, r: f32) -> Vec<[u32; 4]> {
+    let mut v = Vec::new();
+    s.for_each_near(x, r, |sc| {
+        v.push([
+            sc.p0[0].to_bits(),
+            sc.p0[1].to_bits(),
+            sc.p1[0].to_bits(),
+            sc.p1[1].to_bits(),
+        ])
+    });
+    v.sort_unstable();
+    v
+}
+
+#[test]
+fn lookup_equals_brute_force() {
+    let mut total_queries = 0;
+    for (n, extent) in [
+        (1_000usize, 2_000.0f32),
+        (10_000, 6_000.0),
+        (100_000, 20_000.0),
+    ] {
+        let scratches = field(n, extent, n as u64);
+        let lookup = ScratchLookup::new(&scratches, 10.0);
+        let brute = ScratchSlice {
+            scratches: &scratches,
+        };
+        let mut r = Rng(7 + n as u64);
+        let queries = if n == 100_000 { 2_000 } else { 5_000 };
+        let mut found = 0;
+        for _ in 0..queries {
+            let x = Vec2::new(extent * r.u(), extent * r.u());
+            let radius = [30.0, 60.0, 200.0][(r.u() * 3.0) as usize % 3];
+            let a = collect(&lookup.set(), x, radius);
+            assert_eq!(a, collect(&brute, x, radius), "n={n} x={x} r={radius}");
+            found += a.len();
+        }
+        assert!(
+            found > queries,
+            "the test should exercise non-empty answers (n={n}: {found})"
+        );
+        total_queries += queries;
+    }
+    assert!(total_queries >= 10_000);
+}
+
+#[test]
+fn models_agree_through_lookup_and_slice() {
+    let scratches = field(3_000, 600.0, 99);
+    let lookup = ScratchLookup::new(&scratches, 10.0);
+    let brute = ScratchSlice {
+        scratches: &scratches,
+    };
+    let mut r = Rng(5);
+    for model in [Model::Werner, Model::WernerBlended, Model::Velinov] {
+        let p = TableParams {
+            model: model as u32,
+            base_gaussian: 1,
+            sigma_um: 10.0,
+            ..Default::default()
+        };
+        for _ in 0..500 {
+            let (a, b) = (0.3 * (r.u() - 0.5), 0.3 * (r.u() - 0.5));
+            let q = TableQuery {
+                wi: [0.0, 0.0, 1.0],
+                wo: [a, b, (1.0 - a * a - b * b).sqrt()],
+                lambda_nm: 550.0,
+                x: [600.0 * r.u(), 600.0 * r.u()],
+                material: scratchwave_kernel::table::Material::constant(1.0),
+                ..Default::default()
+            };
+            let (x, y) = (evaluate(&p, &q, &lookup.set()), evaluate(&p, &q, &brute));
+            // Same terms summed in another order: the rounding difference scales with the
+            // summands, bounded by n·Σ|S_k|² ≥ (Σ|S_k|)² (the incoherent model's value).
+            let mut near = 0;
+            brute.for_each_near(Vec2::from_array(q.x), 60.0, |_| near += 1);
+            let incoherent = TableParams {
+                model: Model::Velinov as u32,
+                ..p
+            };
+            let scale = near as f32 * evaluate(&incoherent, &q, &brute);
+            assert!(
+                (x - y).abs() <= 1e-5 * (x.abs().max(y.abs()) + scale) + 1e-30,
+                "{model:?}: {x} vs {y}"
+            );
+        }
+    }
+}

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The whole test suite: setup, formatting, lints, docs, every crate's tests (including the
+# SPIR-V build and the lavapipe conformance cases) and the conformance run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh
+export CARGO_TERM_COLOR=never
+step() { printf '\n== %s\n' "$*" >&2; }
+step "cargo fmt --check"
+cargo fmt --all -- --check
+step "cargo clippy -D warnings"
+cargo clippy --workspace --all-targets -- -D warnings
+step "cargo doc"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --quiet
+step "cargo test"
+cargo test --workspace
+step "scratchwave run (conformance)"
+cargo run --release --quiet -p scratchwave-conformance --bin scratchwave -- run
