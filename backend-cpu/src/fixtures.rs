@@ -188,3 +188,11 @@ pub fn random_points(n: usize, seed: u64, extent: f32) -> Vec<[f32; 2]> {
         .map(|_| [rng.range(0.0, extent), rng.range(0.0, extent)])
         .collect()
 }
+
+/// A scratch field of `n` segments at density 0.01 per µm² (square side 10 µm·√n), lengths
+/// below 50 µm: a radius-30 µm query (3σ of the default coherence window) finds a few tens of
+/// segments whatever `n` is. Returns the segments and the side length.
+pub fn scratch_field(n: usize, seed: u64) -> (Vec<Segment2>, f32) {
+    let extent = 10.0 * (n as f32).sqrt();
+    (random_segments(n, seed, extent, 50.0), extent)
+}

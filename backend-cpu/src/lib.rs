@@ -36,7 +36,7 @@ mod triangle_bvh;
 
 pub use mesh::MeshError;
 pub use parallel::Backend;
-pub use queries::{RayQueries, SegmentRadiusQuery};
+pub use queries::{Coherence, RayQueries, SegmentRadiusQuery};
 pub use scratch_lookup::ScratchLookup;
 pub use segment_bvh::SegmentBvh;
 pub use table::{FootprintRow, evaluate_table, footprint_table};

@@ -7,7 +7,7 @@
 //! horizon) and scratch orientations are drawn from the ranges in [`SweepRanges`].
 
 use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, MAX_VERTICES};
-use scratchwave_kernel::scratch::Scratch;
+use scratchwave_kernel::scratch::{Profile, Scratch};
 use scratchwave_kernel::table::Material;
 
 /// A small deterministic generator (SplitMix64), so sweeps replay exactly.
@@ -209,20 +209,14 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
     let wy = c * t[1] + wb * b[1];
     let wo = [wx, wy, (1.0 - wx * wx - wy * wy).sqrt()];
     let sb = rng.range(-10.0, 10.0);
-    let scratch = Scratch {
-        p0: [
-            (-150.0 * t[0] + sb * b[0]) as f32,
-            (-150.0 * t[1] + sb * b[1]) as f32,
-        ],
-        p1: [
-            (150.0 * t[0] + sb * b[0]) as f32,
-            (150.0 * t[1] + sb * b[1]) as f32,
-        ],
-        width: rng.log_range(0.2, 5.0) as f32,
-        depth: rng.range(0.02, 0.5) as f32,
-        profile: 0,
-        pad: 0,
-    };
+    let scratch = Scratch::from_endpoints(
+        [-150.0 * t[0] + sb * b[0], -150.0 * t[1] + sb * b[1]],
+        [150.0 * t[0] + sb * b[0], 150.0 * t[1] + sb * b[1]],
+        rng.log_range(0.2, 5.0) as f32,
+        rng.range(0.02, 0.5) as f32,
+        Profile::Rect,
+    );
+
     let query = LightQuery {
         wo: wo.map(|v| v as f32),
         lambda_nm: rng.range(380.0, 780.0) as f32,

@@ -323,14 +323,13 @@ pub fn light_reference_budget(
         let w = [q.wo[0] as f64, q.wo[1] as f64, q.wo[2] as f64];
         norm(w)
     };
-    let p0 = [scratch.p0[0] as f64, scratch.p0[1] as f64];
-    let p1 = [scratch.p1[0] as f64, scratch.p1[1] as f64];
-    let (dx, dy) = (p1[0] - p0[0], p1[1] - p0[1]);
-    let len = (dx * dx + dy * dy).sqrt();
-    if !(len > 0.0) || !(wo[2] > 0.0) || matches!(region, RefRegion::Empty) {
+    let (dx, dy) = (scratch.tangent[0] as f64, scratch.tangent[1] as f64);
+    let tl = (dx * dx + dy * dy).sqrt();
+    let len = 2.0 * scratch.half_len as f64;
+    if !(len > 0.0 && tl > 0.0 && wo[2] > 0.0) || matches!(region, RefRegion::Empty) {
         return Reference::default();
     }
-    let t = [dx / len, dy / len];
+    let t = [dx / tl, dy / tl];
     let b = [-t[1], t[0]];
     let tp = TableParams {
         model: Model::Velinov as u32,

@@ -5,6 +5,16 @@
 
 use scratchwave_kernel::ray::{Hit, Ray};
 
+/// Whether a batch of rays is coherent (similar origins and directions, such as primary rays
+/// of neighbouring pixels) or not (secondary bounces). A hint; results do not depend on it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coherence {
+    /// Neighbouring rays have similar origins and directions.
+    Coherent,
+    /// No relation between neighbouring rays.
+    Incoherent,
+}
+
 /// Closest-hit and occlusion ray queries against one static scene. Implementations are
 /// `Sync`: queries take `&self` and may run from many threads at once (rayon).
 ///
@@ -18,12 +28,14 @@ pub trait RayQueries: Sync {
     /// `true` if anything is hit with `t ∈ (ray.t_near, ray.t_far]` (shadow rays).
     fn occluded(&self, ray: &Ray) -> bool;
 
-    /// Closest hits of many rays; `hits[i]` answers `rays[i]`. Implementations may trace
-    /// groups of rays together (Embree packets), so pass coherent rays in screen-space tiles.
+    /// Closest hits of many rays; `hits[i]` answers `rays[i]`. With [`Coherence::Coherent`]
+    /// implementations may trace groups of consecutive rays together (Embree packets), so
+    /// pass coherent rays in compact screen-space tiles.
     ///
     /// # Panics
     /// If `rays` and `hits` differ in length.
-    fn closest_hits(&self, rays: &[Ray], hits: &mut [Option<Hit>]) {
+    fn closest_hits(&self, rays: &[Ray], hits: &mut [Option<Hit>], coherence: Coherence) {
+        let _ = coherence;
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
         for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
             *hit = self.closest_hit(ray);

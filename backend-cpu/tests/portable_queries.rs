@@ -2,12 +2,11 @@
 //! identical occlusion, and exactly the brute-force set for radius queries.
 
 use scratchwave_cpu::fixtures::{
-    self, Mesh, camera_rays, random_points, random_rays, random_segments, sphere_with,
-    triangle_soup,
+    self, Mesh, camera_rays, random_points, random_rays, sphere_with, triangle_soup,
 };
 use scratchwave_cpu::mesh::triangles_of;
 use scratchwave_cpu::{
-    MeshError, RayQueries, SegmentBvh, SegmentRadiusQuery, TriangleBvh, reference,
+    Coherence, MeshError, RayQueries, SegmentBvh, SegmentRadiusQuery, TriangleBvh, reference,
 };
 use scratchwave_kernel::ray::Ray;
 use scratchwave_kernel::segment::Segment2;
@@ -19,7 +18,7 @@ fn check_rays(mesh: &Mesh, rays: &[Ray], what: &str) -> usize {
     let bvh = TriangleBvh::new(&mesh.vertices, &mesh.indices).expect("valid mesh");
     let triangles = triangles_of(&mesh.vertices, &mesh.indices);
     let mut hits = vec![None; rays.len()];
-    bvh.closest_hits(rays, &mut hits);
+    bvh.closest_hits(rays, &mut hits, Coherence::Incoherent);
     let mut n_hit = 0;
     for (i, (ray, hit)) in rays.iter().zip(&hits).enumerate() {
         let expected = reference::closest_hit(&triangles, ray);
@@ -124,56 +123,6 @@ fn out_of_range_indices_are_rejected() {
     );
 }
 
-/// Segment density 0.01 per µm² (side = 10 µm·√n), lengths below 50 µm, radius 30 µm
-/// (3σ of the default coherence window): a few tens of segments per query at every size.
-fn scratch_field(n: usize, seed: u64) -> (Vec<Segment2>, f32) {
-    let extent = 10.0 * (n as f32).sqrt();
-    (random_segments(n, seed, extent, 50.0), extent)
-}
-
-/// An exact oracle that scales: segments sorted by the low x of their box; a query scans only
-/// those whose low x lies in `[p.x − r − L, p.x + r]` (L = widest box) and tests each
-/// exactly. No tree; checked against plain brute force below.
-struct SweepOracle {
-    by_min_x: Vec<(f32, u32, Segment2)>,
-    max_width: f32,
-}
-
-impl SweepOracle {
-    fn new(segments: &[Segment2]) -> SweepOracle {
-        let mut by_min_x: Vec<_> = segments
-            .iter()
-            .enumerate()
-            .map(|(i, s)| (s.bounds().min[0], i as u32, *s))
-            .collect();
-        by_min_x.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let max_width = segments
-            .iter()
-            .map(|s| s.bounds().max[0] - s.bounds().min[0])
-            .fold(0.0, f32::max);
-        SweepOracle {
-            by_min_x,
-            max_width,
-        }
-    }
-
-    fn query(&self, p: [f32; 2], r: f32, out: &mut Vec<u32>) {
-        out.clear();
-        let lo = self
-            .by_min_x
-            .partition_point(|e| e.0 < p[0] - r - self.max_width - 1.0);
-        for (min_x, i, s) in &self.by_min_x[lo..] {
-            if *min_x > p[0] + r + 1.0 {
-                break;
-            }
-            if s.is_within(p, r) {
-                out.push(*i);
-            }
-        }
-        out.sort_unstable();
-    }
-}
-
 #[test]
 fn radius_queries_return_exactly_the_brute_force_set() {
     let r = 30.0;
@@ -183,11 +132,11 @@ fn radius_queries_return_exactly_the_brute_force_set() {
         (100_000, 300, 10_000),
         (1_000_000, 100, 10_000),
     ] {
-        let (segments, extent) = scratch_field(n, 7);
+        let (segments, extent) = fixtures::scratch_field(n, 7);
         let bvh = SegmentBvh::new(&segments, r).expect("valid");
         let (mut got, mut expected) = (Vec::new(), Vec::new());
         let mut total = 0;
-        let oracle = SweepOracle::new(&segments);
+        let oracle = reference::SegmentSweep::new(&segments);
         for (k, p) in random_points(n_brute.max(n_sweep), 8, extent)
             .into_iter()
             .enumerate()

@@ -25,8 +25,9 @@ fn field(n: usize, extent: f32, seed: u64) -> Vec<Scratch> {
             let a = std::f32::consts::TAU * r.u();
             let h = 200.0 * r.u() * r.u();
             Scratch {
-                p0: [c[0] - h * a.cos(), c[1] - h * a.sin()],
-                p1: [c[0] + h * a.cos(), c[1] + h * a.sin()],
+                center: c,
+                tangent: [a.cos(), a.sin()],
+                half_len: h,
                 width: 1.0,
                 depth: 0.2,
                 ..Scratch::default()
@@ -39,10 +40,10 @@ fn collect<S: ScratchSet>(s: &S, x: Vec2, r: f32) -> Vec<[u32; 4]> {
     let mut v = Vec::new();
     s.for_each_near(x, r, |sc| {
         v.push([
-            sc.p0[0].to_bits(),
-            sc.p0[1].to_bits(),
-            sc.p1[0].to_bits(),
-            sc.p1[1].to_bits(),
+            sc.center[0].to_bits(),
+            sc.center[1].to_bits(),
+            sc.tangent[0].to_bits(),
+            sc.half_len.to_bits(),
         ])
     });
     v.sort_unstable();

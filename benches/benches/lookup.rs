@@ -17,8 +17,9 @@ fn field(n: usize, extent: f32, r: &mut Rng) -> Vec<Scratch> {
             let a = std::f32::consts::TAU * r.u();
             let h = 100.0 * r.u();
             Scratch {
-                p0: [c[0] - h * a.cos(), c[1] - h * a.sin()],
-                p1: [c[0] + h * a.cos(), c[1] + h * a.sin()],
+                center: c,
+                tangent: [a.cos(), a.sin()],
+                half_len: h,
                 width: 1.0,
                 depth: 0.2,
                 ..Scratch::default()

@@ -35,8 +35,9 @@ pub fn scratches_in_window(n: usize, sigma: f32, seed: u64) -> Vec<Scratch> {
             let c = [(r.u() - 0.5) * 2.0 * sigma, (r.u() - 0.5) * 2.0 * sigma];
             let h = sigma * (1.0 + 4.0 * r.u());
             Scratch {
-                p0: [c[0] - h * a.cos(), c[1] - h * a.sin()],
-                p1: [c[0] + h * a.cos(), c[1] + h * a.sin()],
+                center: c,
+                tangent: [a.cos(), a.sin()],
+                half_len: h,
                 width: 0.5 + 2.5 * r.u(),
                 depth: 0.05 + 0.45 * r.u(),
                 profile: if i % 2 == 0 {
@@ -44,7 +45,6 @@ pub fn scratches_in_window(n: usize, sigma: f32, seed: u64) -> Vec<Scratch> {
                 } else {
                     Profile::Triangle as u32
                 },
-                pad: 0,
             }
         })
         .collect()

@@ -62,8 +62,9 @@ pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
             let a = std::f32::consts::TAU * r.u();
             let h = sigma * [0.05, 0.5, 3.0, 500.0][i % 4];
             Scratch {
-                p0: [c[0] - h * a.cos(), c[1] - h * a.sin()],
-                p1: [c[0] + h * a.cos(), c[1] + h * a.sin()],
+                center: c,
+                tangent: [a.cos(), a.sin()],
+                half_len: h,
                 width: 0.3 + 3.0 * r.u(),
                 depth: 0.02 + 0.6 * r.u(),
                 profile: if i % 2 == 0 {
@@ -71,7 +72,6 @@ pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
                 } else {
                     Profile::Triangle as u32
                 },
-                pad: 0,
             }
         })
         .collect();

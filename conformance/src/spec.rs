@@ -168,16 +168,22 @@ fn scratches(top: &Obj) -> Result<Vec<Scratch>, SpecError> {
             Some("triangle") => Profile::Triangle,
             _ => Profile::Rect,
         };
-        out.push(Scratch {
-            p0: point(&s, "p0")?,
-            p1: point(&s, "p1")?,
-            width: json::positive(s.num("width")?, &s.path_of("width"), true)?,
-            depth: json::positive(s.num("depth")?, &s.path_of("depth"), true)?,
-            profile: profile as u32,
-            pad: 0,
-        });
+        let (p0, p1) = (point64(&s, "p0")?, point64(&s, "p1")?);
+        let width = json::positive(s.num("width")?, &s.path_of("width"), true)?;
+        let depth = json::positive(s.num("depth")?, &s.path_of("depth"), true)?;
+        out.push(Scratch::from_endpoints(p0, p1, width, depth, profile));
     }
     Ok(out)
+}
+
+/// A point kept in f64 (scratch end points: see `Scratch::from_endpoints`), finite and
+/// within f32 range.
+fn point64(o: &Obj, key: &str) -> Result<[f64; 2], SpecError> {
+    let p = o.vec::<2>(key)?;
+    let path = o.path_of(key);
+    json::to_f32(p[0], &format!("{path}[0]"))?;
+    json::to_f32(p[1], &format!("{path}[1]"))?;
+    Ok(p)
 }
 
 fn point(o: &Obj, key: &str) -> Result<[f32; 2], SpecError> {

@@ -11,7 +11,8 @@
 //! * [`eta_p_accurate`]: this crate's method, accurate at every footprint size: the integral
 //!   across the scratch is done in closed form (an `erf` difference) and the one along it by
 //!   panelled Gauss–Legendre in `θ` with `u = u_c + U sin θ` (smooth at the ellipse's ends),
-//!   panels split at the segment ends and where the chords cross the scratch line;
+//!   panels split around the segment ends and where the ellipse boundary crosses the
+//!   scratch's Gaussian band (lines `v = kσ` parallel to it);
 //! * [`rho_p_eq18`]: Eq. 18 without its spurious factor 2 (`W l / A_P`), and
 //!   [`rho_p_accurate`] by the same quadrature as `eta_p_accurate`.
 
@@ -128,8 +129,9 @@ const GL_X: [f32; 4] = [0.183_434_64, 0.525_532_4, 0.796_666_5, 0.960_289_86];
 const GL_W: [f32; 4] = [0.362_683_8, 0.313_706_64, 0.222_381_03, 0.101_228_54];
 /// Breakpoint offsets (in σ) around each feature along the scratch.
 const OFFSETS: [f32; 5] = [-3.0, -1.5, 0.0, 1.5, 3.0];
-/// Maximum number of panel boundaries: 3 features × 5 offsets + the 2 ellipse ends.
-const MAX_BREAKS: usize = 17;
+/// Maximum number of panel boundaries: the 2 ellipse ends, 5 offsets around each of the 2
+/// segment ends, and 2 boundary crossings for each of the 5 band lines.
+const MAX_BREAKS: usize = 22;
 
 /// `(1/A_P)∫_P |η_s|²` (`squared`) or `(1/A_P)∫_P exp(−v²/(2σ²)) g(u)` (not squared),
 /// with `u, v` the scratch-frame coordinates of `x` and `g(u) = ∫_seg exp(−(s−u)²/(2σ²)) ds`.
@@ -139,12 +141,13 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
         return 0.0;
     }
     // Ellipse in the scratch frame: centre (eu, ev), quadratic form [[qa, qb], [qb, qc]] =
-    // R diag(1/a1², 1/a2²) Rᵀ; only qb, qc are needed for chords at fixed u.
+    // R diag(1/a1², 1/a2²) Rᵀ.
     let d = Vec2::from_array(e.center) - frame.center;
     let (eu, ev) = (d.dot(frame.tangent), d.dot(frame.bitangent));
     let phi = e.angle_rad - math::atan2(frame.tangent.y, frame.tangent.x);
     let (sp, cp) = (math::sin(phi), math::cos(phi));
     let (i1, i2) = (1.0 / (e.a1 * e.a1), 1.0 / (e.a2 * e.a2));
+    let qa = cp * cp * i1 + sp * sp * i2;
     let qb = cp * sp * (i1 - i2);
     let qc = sp * sp * i1 + cp * cp * i2;
     let ab = e.a1 * e.a2;
@@ -173,19 +176,22 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
         }
         f += 1;
     }
-    // Where the chords' midpoints v_c(u) = ev − (qb/qc)(u − eu) pass within a few σ of the
-    // scratch line: u − eu = (ev − v) qc/qb for v = OFFSETS·σ. None when the chords run
-    // parallel to the line (qb ≈ 0: v_c is constant).
-    if math::abs(qb) > 1.0e-12 * qc {
-        let mut o = 0;
-        while o < 5 {
-            push_break(
-                &mut br,
-                &mut n,
-                (ev - OFFSETS[o] * sigma) * qc / qb / half_u,
-            );
-            o += 1;
+    // Where the ellipse boundary crosses the scratch's Gaussian band: the intersections of
+    // the lines v = OFFSETS·σ with the ellipse, qa du² + 2 qb dv du + qc dv² = 1, i.e.
+    // du = (−qb dv ± √(qa − dv² det))/qa with det = qa qc − qb² = 1/(a1 a2)². For a large
+    // footprint these are where the chords' ends leave the band; for a needle they bracket
+    // where the whole chord crosses it.
+    let det = i1 * i2;
+    let mut o = 0;
+    while o < 5 {
+        let dv = OFFSETS[o] * sigma - ev;
+        let disc = qa - dv * dv * det;
+        if disc > 0.0 && qa > 0.0 {
+            let r = math::sqrt(disc);
+            push_break(&mut br, &mut n, (-qb * dv - r) / qa / half_u);
+            push_break(&mut br, &mut n, (-qb * dv + r) / qa / half_u);
         }
+        o += 1;
     }
     sort(&mut br, n);
     let mut total = 0.0;
@@ -230,7 +236,7 @@ fn push_break(br: &mut [f32; MAX_BREAKS], n: &mut usize, r: f32) {
     }
 }
 
-/// Insertion sort of the first `n` entries (n ≤ 17; no recursion for SPIR-V).
+/// Insertion sort of the first `n` entries (n ≤ MAX_BREAKS; no recursion for SPIR-V).
 // Slice methods such as `swap` are avoided in the kernel (rust-gpu limits, DESIGN.md).
 #[allow(clippy::manual_swap)]
 fn sort(a: &mut [f32; MAX_BREAKS], n: usize) {

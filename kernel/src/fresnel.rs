@@ -10,9 +10,11 @@ use crate::math::{self, C32};
 /// `F_p = |(η² cosθ − √(η² − sin²θ)) / (η² cosθ + √(η² − sin²θ))|²`.
 pub fn fresnel(cos_theta: f32, n: f32, k: f32) -> f32 {
     let c = math::clamp(cos_theta, 0.0, 1.0);
-    let s2 = math::max(1.0 - c * c, 0.0);
     let eta2 = C32::new(n * n - k * k, 2.0 * n * k);
-    let root = math::csqrt(eta2 - C32::new(s2, 0.0));
+    // η² − sin²θ = (η² − 1) + cos²θ, with η² − 1 = (n − k)(n + k) − 1 + 2ink: no
+    // cancellation at grazing incidence (`η² − (1 − cos²θ)` loses cos²θ once it is below
+    // f32 resolution of 1) nor for n ≈ 1.
+    let root = math::csqrt(C32::new((n - 1.0) * (n + 1.0) - k * k + c * c, 2.0 * n * k));
     let fs = ratio_norm_sqr(C32::new(c, 0.0) - root, C32::new(c, 0.0) + root);
     let e2c = math::cscale(eta2, c);
     let fp = ratio_norm_sqr(e2c - root, e2c + root);

@@ -13,10 +13,7 @@
 //! use scratchwave_kernel::table::{evaluate, Material, Model, TableParams, TableQuery};
 //!
 //! // One 2 µm wide, 0.3 µm deep V-groove through the shading point, along x.
-//! let scratches = [Scratch {
-//!     p0: [-200.0, 0.0], p1: [200.0, 0.0], width: 2.0, depth: 0.3,
-//!     profile: Profile::Triangle as u32, pad: 0,
-//! }];
+//! let scratches = [Scratch::from_endpoints([-200.0, 0.0], [200.0, 0.0], 2.0, 0.3, Profile::Triangle)];
 //! let params = TableParams { model: Model::Werner as u32, sigma_um: 10.0, ..Default::default() };
 //! // Light from the normal, viewer tilted across the scratch: first-order diffraction.
 //! let q = TableQuery {

@@ -2,6 +2,12 @@
 //! `python3 reference/generate.py`). Criterion (issue #2): ≤ 1e-4 relative wherever the
 //! reference is above 1e-6 of the file's maximum; below that, ≤ 1e-4 of the maximum. Each
 //! test prints the measured worst case.
+//!
+//! Oscillatory quantities (sinc transforms, spatial phases) get one stated allowance on top:
+//! near a zero of the oscillation the value is a difference of larger terms whose phases
+//! (`β = πWξ₂`, `2πξ₁u`, …) carry f32 rounding, so the absolute error can reach
+//! `C ε Φ S` (ε = 2^-24, Φ the phase magnitude, S the terms' magnitude) whatever the
+//! algorithm. `C = 16`. Each test reports how many values needed that allowance.
 
 use glam::Vec2;
 use scratchwave_kernel::footprint::{self, Ellipse};
@@ -40,6 +46,10 @@ fn v2(v: &Value) -> [f32; 2] {
     [f(&v[0]) as f32, f(&v[1]) as f32]
 }
 
+fn p64(v: &Value) -> [f64; 2] {
+    [f(&v[0]), f(&v[1])]
+}
+
 fn c(v: &Value) -> (f64, f64) {
     (f(&v[0]), f(&v[1]))
 }
@@ -70,6 +80,40 @@ fn worst(pairs: &[(f64, f64, String)]) -> Worst {
         }
     }
     w
+}
+
+/// f32 unit roundoff.
+const EPS: f64 = 1.0 / 16_777_216.0;
+
+/// Like [`check`], for oscillatory values: `(|kernel − ref|, |ref|, allowance, label)` where
+/// the allowance is the f32 phase-conditioning bound described in the module docs.
+fn check_oscillatory(what: &str, rows: &[(f64, f64, f64, String)]) {
+    let peak = rows.iter().fold(0.0f64, |m, p| m.max(p.1));
+    let (mut worst_rel, mut at, mut conditioned, mut fail) = (0.0f64, String::new(), 0, None);
+    for (d, r, allow, label) in rows {
+        let tol = if *r >= FLOOR * peak {
+            TOL * r
+        } else {
+            TOL * peak
+        };
+        if *d <= tol {
+            if *r >= FLOOR * peak && d / r > worst_rel {
+                worst_rel = d / r;
+                at = label.clone();
+            }
+        } else if *d <= tol + allow {
+            conditioned += 1;
+        } else if fail.is_none() {
+            fail = Some(format!(
+                "{label}: |Δ| = {d:.3e}, |ref| = {r:.3e}, allowance {allow:.3e}"
+            ));
+        }
+    }
+    eprintln!(
+        "{what}: {} values, worst rel {worst_rel:.3e} at {at}; {conditioned} within the f32 phase-conditioning allowance only",
+        rows.len()
+    );
+    assert!(fail.is_none(), "{what}: {}", fail.unwrap_or_default());
 }
 
 fn check(what: &str, pairs: &[(f64, f64, String)]) {
@@ -164,11 +208,7 @@ fn spatial_phase_matches_quadrature() {
     let mut fin = Vec::new();
     let mut inf = Vec::new();
     for (i, e) in cases.as_array().unwrap().iter().enumerate() {
-        let s = Scratch {
-            p0: v2(&e["p0"]),
-            p1: v2(&e["p1"]),
-            ..Scratch::default()
-        };
+        let s = Scratch::from_endpoints(p64(&e["p0"]), p64(&e["p1"]), 0.0, 0.0, Profile::Rect);
         let x0 = Vec2::from_array(v2(&e["x0"]));
         let xi = Vec2::from_array(v2(&e["xi"]));
         let sigma = f(&e["sigma"]) as f32;
@@ -176,18 +216,36 @@ fn spatial_phase_matches_quadrature() {
         let label = format!("case {i}");
         match s.frame() {
             Some(fr) => {
+                // Phases 2πξ₁u (u up to |s_t| + L/2, at most ~8σ where terms survive) and
+                // 2π s_b ξ₂; terms up to √(2π)σ e^{−s_b²/(2σ²)}.
+                let (st, sb) = fr.offset_from(x0);
+                let (x1, x2) = (
+                    f64::from(xi.dot(fr.tangent)),
+                    f64::from(xi.dot(fr.bitangent)),
+                );
+                let reach = f64::from(st.abs() + fr.half_len).min(8.0 * f64::from(sigma));
+                let tau = std::f64::consts::TAU;
+                let phase = 1.0 + tau * (x1.abs() * reach + x2.abs() * f64::from(sb.abs()));
+                let gauss = (-0.5 * f64::from(sb * sb / (sigma * sigma))).exp();
+                let allow = 16.0 * EPS * phase * tau.sqrt() * f64::from(sigma) * gauss;
                 fin.push((
                     cdiff(eta_finite(&fr, x0, xi, sigma), r),
                     cabs(r),
+                    allow,
                     label.clone(),
                 ));
-                inf.push((cdiff(eta_infinite(&fr, x0, xi, sigma), ri), cabs(ri), label));
+                inf.push((
+                    cdiff(eta_infinite(&fr, x0, xi, sigma), ri),
+                    cabs(ri),
+                    allow,
+                    label,
+                ));
             }
             None => assert!(cabs(r) == 0.0, "{label}: zero-length segment must give 0"),
         }
     }
-    check("η finite", &fin);
-    check("η infinite", &inf);
+    check_oscillatory("η finite", &fin);
+    check_oscillatory("η infinite", &inf);
 }
 
 #[test]
@@ -211,19 +269,21 @@ fn profile_transforms_match_quadrature() {
         let m = c(&p["mask"]);
         let s = c(&p["scratch"]);
         let label = format!("case {i} ({profile:?} W={w} D={d} ξ₂={x})");
-        mask.push((
-            (f64::from(mask_transform(w, x)) - m.0).abs() + m.1.abs(),
-            cabs(m),
-            label.clone(),
-        ));
+        // sinc(β) = sin β/β: an error εβ in β = πWξ₂ moves it by at most εβ|cos β|/β ≤ ε,
+        // times W; the triangle's κ/2 phases (κ = 2πγD/λ) add εκ.
+        let kappa = std::f64::consts::TAU * f64::from(g * d / l).abs();
+        let allow = 16.0 * EPS * f64::from(w) * (2.0 + kappa);
+        let dm = (f64::from(mask_transform(w, x)) - m.0).abs() + m.1.abs();
+        mask.push((dm, cabs(m), allow, label.clone()));
         scratch.push((
             cdiff(profile_transform(profile, w, d, g, l, x), s),
             cabs(s),
+            allow,
             label,
         ));
     }
-    check("mask transform", &mask);
-    check("profile transform", &scratch);
+    check_oscillatory("mask transform", &mask);
+    check_oscillatory("profile transform", &scratch);
 }
 
 #[test]
@@ -234,13 +294,13 @@ fn footprint_matches_quadrature() {
     let mut closed = Vec::new();
     for (i, q) in data["cases"].as_array().unwrap().iter().enumerate() {
         let sc = &q["scratch"];
-        let s = Scratch {
-            p0: v2(&sc["p0"]),
-            p1: v2(&sc["p1"]),
-            width: f(&sc["width"]) as f32,
-            depth: f(&sc["depth"]) as f32,
-            ..Scratch::default()
-        };
+        let s = Scratch::from_endpoints(
+            p64(&sc["p0"]),
+            p64(&sc["p1"]),
+            f(&sc["width"]) as f32,
+            f(&sc["depth"]) as f32,
+            Profile::Rect,
+        );
         let el = &q["ellipse"];
         let e = Ellipse {
             center: v2(&el["center"]),

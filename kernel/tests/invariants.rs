@@ -34,14 +34,8 @@ fn dir(a: f64, b: f64) -> [f64; 3] {
 }
 
 fn rect(p0: [f32; 2], p1: [f32; 2], w: f32, d: f32) -> Scratch {
-    Scratch {
-        p0,
-        p1,
-        width: w,
-        depth: d,
-        profile: Profile::Rect as u32,
-        pad: 0,
-    }
+    let f = |p: [f32; 2]| [f64::from(p[0]), f64::from(p[1])];
+    Scratch::from_endpoints(f(p0), f(p1), w, d, Profile::Rect)
 }
 
 /// Directional albedo `∫ f cosθo dωo = ∫ f dα dβ` of a flat mirror equals F.

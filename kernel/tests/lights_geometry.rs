@@ -9,13 +9,14 @@ use scratchwave_kernel::lights::{
 use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
 use scratchwave_kernel::table::Material;
 
+/// From (−150, 2) to (150, 2) µm, W = 1 µm, D = 0.1 µm.
 const SCRATCH: Scratch = Scratch {
-    p0: [-150.0, 2.0],
-    p1: [150.0, 2.0],
+    center: [0.0, 2.0],
+    tangent: [1.0, 0.0],
+    half_len: 150.0,
     width: 1.0,
     depth: 0.1,
     profile: 0,
-    pad: 0,
 };
 
 fn eval_with(light: Light, wo: [f32; 3], bands: u32) -> f32 {

@@ -111,8 +111,9 @@ fn a_million_configurations_are_finite_and_non_negative() {
         let sb = rng.r(-30.0, 30.0);
         let (t, b) = ([a.cos(), a.sin()], [-a.sin(), a.cos()]);
         let scratch = Scratch {
-            p0: [sb * b[0] - len * t[0], sb * b[1] - len * t[1]],
-            p1: [sb * b[0] + len * t[0], sb * b[1] + len * t[1]],
+            center: [sb * b[0], sb * b[1]],
+            tangent: t,
+            half_len: len,
             width: if rng.u() < 0.05 {
                 0.0
             } else {
@@ -120,7 +121,6 @@ fn a_million_configurations_are_finite_and_non_negative() {
             },
             depth: rng.r(0.0, 2.0),
             profile: (rng.u() < 0.2) as u32,
-            pad: 0,
         };
         let params = LightParams {
             sigma_um: 10f32.powf(rng.r(0.0, 2.0)),

@@ -96,14 +96,13 @@ fn numeric(r: &Raster, xi: (f64, f64)) -> f64 {
 }
 
 fn model(xi: (f64, f64)) -> f64 {
-    let s = [Scratch {
-        p0: [X_START as f32, 0.0],
-        p1: [X_END as f32, 0.0],
-        width: W as f32,
-        depth: D as f32,
-        profile: Profile::Rect as u32,
-        pad: 0,
-    }];
+    let s = [Scratch::from_endpoints(
+        [X_START, 0.0],
+        [X_END, 0.0],
+        W as f32,
+        D as f32,
+        Profile::Rect,
+    )];
     let p = TableParams {
         model: Model::Werner as u32,
         depth_term: 1,

@@ -42,14 +42,13 @@ fn scratch(r: &mut Rng, sigma: f32) -> Scratch {
     let len = r.pick(&[0.0, 1e-3, 0.1 * sigma, 5.0 * sigma, 10_000.0]);
     let a = 2.0 * PI * r.u();
     let c = [far * (r.u() - 0.5), far * (r.u() - 0.5)];
-    let (dx, dy) = (0.5 * len * a.cos(), 0.5 * len * a.sin());
     Scratch {
-        p0: [c[0] - dx, c[1] - dy],
-        p1: [c[0] + dx, c[1] + dy],
+        center: c,
+        tangent: [a.cos(), a.sin()],
+        half_len: 0.5 * len,
         width: r.pick(&[0.0, 0.05, 1.0, 3.0, 25.0]),
         depth: r.pick(&[0.0, 1e-4, 0.2, 1.3, 5.0]),
         profile: r.pick(&[Profile::Rect as u32, Profile::Triangle as u32]),
-        pad: 0,
     }
 }
 

@@ -5,21 +5,26 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
 
 /// One straight scratch segment on the tangent plane (µm). GPU-visible: 32 bytes, no `Vec`.
+///
+/// Stored as centre, unit tangent and half length rather than end points: a long segment's
+/// end points are large numbers whose f32 rounding (0.03 µm at 400 mm) would move the line,
+/// and the spatial phase `2π s_b ξ₂` amplifies that. Build it with
+/// [`Scratch::from_endpoints`], which does the conversion in f64.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct Scratch {
-    /// First end point (µm).
-    pub p0: [f32; 2],
-    /// Second end point (µm).
-    pub p1: [f32; 2],
+    /// Midpoint (µm).
+    pub center: [f32; 2],
+    /// Unit tangent (from the first end point to the second).
+    pub tangent: [f32; 2],
+    /// Half of the length (µm); 0 for a zero-length segment, which reflects nothing.
+    pub half_len: f32,
     /// Groove width W (µm).
     pub width: f32,
     /// Groove depth D (µm), measured downwards.
     pub depth: f32,
     /// Cross-section profile, a [`super::Profile`] as `u32`.
     pub profile: u32,
-    /// Explicit padding (keep 0).
-    pub pad: u32,
 }
 
 const _: () = assert!(core::mem::size_of::<Scratch>() == 32);
@@ -39,30 +44,69 @@ pub struct SegmentFrame {
 }
 
 impl Scratch {
+    /// The scratch from `p0` to `p1` (µm, f64 so long segments keep their position), with
+    /// the given width, depth (µm) and profile. Host side only (f64).
+    #[cfg(not(target_arch = "spirv"))]
+    pub fn from_endpoints(
+        p0: [f64; 2],
+        p1: [f64; 2],
+        width: f32,
+        depth: f32,
+        profile: super::Profile,
+    ) -> Scratch {
+        let d = [p1[0] - p0[0], p1[1] - p0[1]];
+        let len = libm::sqrt(d[0] * d[0] + d[1] * d[1]);
+        let tangent = if len > 0.0 {
+            [(d[0] / len) as f32, (d[1] / len) as f32]
+        } else {
+            [1.0, 0.0]
+        };
+        Scratch {
+            center: [
+                (0.5 * (p0[0] + p1[0])) as f32,
+                (0.5 * (p0[1] + p1[1])) as f32,
+            ],
+            tangent,
+            half_len: (0.5 * len) as f32,
+            width,
+            depth,
+            profile: profile as u32,
+        }
+    }
+
     /// The segment's frame, or `None` for a zero-length (or non-finite) segment, which
     /// reflects nothing of its own.
     #[inline]
     pub fn frame(&self) -> Option<SegmentFrame> {
-        let p0 = Vec2::from_array(self.p0);
-        let p1 = Vec2::from_array(self.p1);
-        let d = p1 - p0;
-        let len = d.length();
-        if !(len > 0.0) || !len.is_finite() {
+        let t = Vec2::from_array(self.tangent);
+        let c = Vec2::from_array(self.center);
+        if !(self.half_len > 0.0) || !self.half_len.is_finite() || !c.is_finite() || !t.is_finite()
+        {
             return None;
         }
-        let t = d / len;
         Some(SegmentFrame {
-            center: 0.5 * (p0 + p1),
+            center: c,
             tangent: t,
             bitangent: Vec2::new(-t.y, t.x),
-            half_len: 0.5 * len,
+            half_len: self.half_len,
         })
+    }
+
+    /// The two end points (f32; for bounds and display).
+    #[inline]
+    pub fn endpoints(&self) -> ([f32; 2], [f32; 2]) {
+        let (c, t, h) = (self.center, self.tangent, self.half_len);
+        (
+            [c[0] - h * t[0], c[1] - h * t[1]],
+            [c[0] + h * t[0], c[1] + h * t[1]],
+        )
     }
 
     /// The bare segment (what the lookup structures index).
     #[inline]
     pub fn segment(&self) -> Segment2 {
-        Segment2::new(self.p0, self.p1)
+        let (a, b) = self.endpoints();
+        Segment2::new(a, b)
     }
 
     /// Distance from `x` to the closed segment (µm).
