@@ -76,6 +76,8 @@ impl Light {
     }
 
     /// A polygon light from up to [`MAX_VERTICES`] vertices (extra ones are dropped).
+    /// Host side (the std spec reader splits larger polygons into fans).
+    #[cfg(not(target_arch = "spirv"))]
     pub fn polygon(vertices: &[[f32; 3]]) -> Light {
         let mut l = Light {
             kind: LIGHT_POLYGON,
