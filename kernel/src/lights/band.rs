@@ -20,6 +20,8 @@ use crate::math;
 use super::si_fast::si_fast;
 
 /// Which sine integral the band integral uses.
+// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
+#[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SiMode {
     /// [`math::si`], exact to f32.

@@ -135,57 +135,68 @@ pub struct LightParams {
 
 const _: () = assert!(core::mem::size_of::<LightParams>() == 32);
 
-/// The solid angle a light fills, as the band code sees it.
-// No `Box` on the GPU: the polygon variant's size is the price of one code path.
-#[allow(clippy::large_enum_variant)]
+/// The solid angle a light fills, as the band code sees it: a cone or a spherical polygon,
+/// chosen by `kind` (a plain struct rather than a data-carrying `enum`, so no enum tag
+/// reaches SPIR-V).
 #[derive(Clone, Copy, Debug)]
-pub enum LightRegion {
-    /// A cone.
-    Sphere(SphereCap),
-    /// A spherical polygon.
-    Polygon(SphericalPolygon),
+pub struct LightRegion {
+    /// [`LIGHT_SPHERE`] or [`LIGHT_POLYGON`].
+    pub kind: u32,
+    /// The cone (spheres).
+    pub sphere: SphereCap,
+    /// The spherical polygon (polygons).
+    pub polygon: SphericalPolygon,
 }
 
 impl LightRegion {
     /// The region of a light record, `None` if it is degenerate or below the horizon.
     pub fn new(light: &Light) -> Option<LightRegion> {
+        let mut r = LightRegion {
+            kind: LIGHT_SPHERE,
+            sphere: SphereCap::EMPTY,
+            polygon: SphericalPolygon::EMPTY,
+        };
         if light.kind == LIGHT_POLYGON {
-            SphericalPolygon::new(&light.vertices, light.count).map(LightRegion::Polygon)
+            r.kind = LIGHT_POLYGON;
+            r.polygon = SphericalPolygon::new(&light.vertices, light.count)?;
         } else {
             let s = light.sphere;
-            SphereCap::new(
+            r.sphere = SphereCap::new(
                 Vec3::new(s[0], s[1], s[2]),
                 s[3],
                 Cone::from_u32(light.cone),
-            )
-            .map(LightRegion::Sphere)
+            )?;
         }
+        Some(r)
     }
 
     /// Whether the unit direction `w` is inside.
     #[inline]
     pub fn contains(&self, w: Vec3) -> bool {
-        match self {
-            LightRegion::Sphere(c) => c.contains(w),
-            LightRegion::Polygon(p) => p.contains(w),
+        if self.kind == LIGHT_POLYGON {
+            self.polygon.contains(w)
+        } else {
+            self.sphere.contains(w)
         }
     }
 
     /// Adds the band's boundary crossings.
     #[inline]
     pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
-        match self {
-            LightRegion::Sphere(c) => c.crossings(band, out),
-            LightRegion::Polygon(p) => p.crossings(band, out),
+        if self.kind == LIGHT_POLYGON {
+            self.polygon.crossings(band, out)
+        } else {
+            self.sphere.crossings(band, out)
         }
     }
 
     /// A representative direction (for `F` and `γ`), lifted above the horizon.
     #[inline]
     pub fn center(&self) -> Vec3 {
-        let c = match self {
-            LightRegion::Sphere(c) => c.axis,
-            LightRegion::Polygon(p) => p.center,
+        let c = if self.kind == LIGHT_POLYGON {
+            self.polygon.center
+        } else {
+            self.sphere.axis
         };
         Vec3::new(c.x, c.y, math::max(c.z, 1.0e-3)).normalize_or_zero()
     }
@@ -200,6 +211,8 @@ impl LightRegion {
 /// over- or under-estimate. The Gauss–Hermite rules evaluate the chord on 3 or 5 parallel
 /// lines `ξ₁ = x_k s` (`s = 1/(2√2 πσ)`, the Gaussian's standard deviation) and weight
 /// them, which is exact for chords polynomial in ξ₁ up to degree 5 or 9.
+// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
+#[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BandRule {
     /// One band at ξ₁ = 0 (Velinov Eq. 27).

@@ -37,6 +37,15 @@ pub struct SphericalPolygon {
 }
 
 impl SphericalPolygon {
+    /// The empty polygon (contains nothing).
+    pub const EMPTY: SphericalPolygon = SphericalPolygon {
+        count: 0,
+        edge: [Vec3::ZERO; MAX_VERTICES],
+        spoke: [Vec3::ZERO; MAX_VERTICES],
+        orient: [0.0; MAX_VERTICES],
+        center: Vec3::Z,
+    };
+
     /// Projects `count` vertices (`xyz` of each `[f32; 4]`, relative to the shading point).
     /// `None` for fewer than 3 vertices, non-finite input, or a polygon entirely below the
     /// horizon.

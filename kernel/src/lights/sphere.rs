@@ -19,6 +19,8 @@ use crate::math;
 use glam::Vec3;
 
 /// Which cone a sphere subtends.
+// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
+#[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Cone {
     /// The true sphere: `α = asin(r/d)` (`α = π`, every direction, when `d ≤ r`).
@@ -47,6 +49,13 @@ pub struct SphereCap {
 }
 
 impl SphereCap {
+    /// The empty cap (contains nothing).
+    pub const EMPTY: SphereCap = SphereCap {
+        axis: Vec3::Z,
+        alpha: 0.0,
+        chord2: -1.0,
+    };
+
     /// The cap of a sphere (centre relative to the shading point, radius, same units).
     /// `None` when the sphere is degenerate (`r ≤ 0`, centre at the point for `Atan`, or
     /// not finite) or lies entirely below the horizon.
