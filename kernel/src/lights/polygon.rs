@@ -49,9 +49,12 @@ impl SphericalPolygon {
     /// Projects `count` vertices (`xyz` of each `[f32; 4]`, relative to the shading point).
     /// `None` for fewer than 3 vertices, non-finite input, or a polygon entirely below the
     /// horizon.
+    #[allow(clippy::manual_range_contains)] // see the comparison below
     pub fn new(vertices: &[[f32; 4]; MAX_VERTICES], count: u32) -> Option<SphericalPolygon> {
         let n = count as usize;
-        if !(3..=MAX_VERTICES).contains(&n) {
+        // Plain comparisons: `RangeInclusive::contains` goes through `Bound<&usize>`, whose
+        // pointer is not a logical pointer on SPIR-V (spirv-val rejects it).
+        if n < 3 || n > MAX_VERTICES {
             return None;
         }
         let mut u = [Vec3::ZERO; MAX_VERTICES];
