@@ -5,7 +5,9 @@ use crate::error::SpecError;
 use crate::json::{self, Obj};
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::scratch::{Profile, Scratch};
-use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery};
+use scratchwave_kernel::table::{
+    FresnelAngle, Material, Model, TableParams, TableQuery, UNIT_TOLERANCE,
+};
 use serde_json::Value;
 
 /// Default coherence σ (µm): δc = 6σ = 60 µm (Werner §4.1).
@@ -195,21 +197,24 @@ fn point(o: &Obj, key: &str) -> Result<[f32; 2], SpecError> {
     ])
 }
 
-/// A direction, normalised; zero length is an error (z ≤ 0 is allowed and evaluates to 0).
+/// A direction, normalised in f64 unless it is already unit within the kernel's
+/// `UNIT_TOLERANCE` (then used as given, so f32 inputs are not rounded twice); zero length is
+/// an error (z ≤ 0 is allowed and evaluates to 0).
 fn direction(o: &Obj, key: &str) -> Result<[f32; 3], SpecError> {
     let d = o.vec::<3>(key)?;
-    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    if !(len > 0.0 && len.is_finite()) {
+    let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if !(l2 > 0.0 && l2.is_finite()) {
         return Err(SpecError::field(
             o.path_of(key),
             "direction must have non-zero, finite length",
         ));
     }
-    Ok([
-        (d[0] / len) as f32,
-        (d[1] / len) as f32,
-        (d[2] / len) as f32,
-    ])
+    let s = if (l2 - 1.0).abs() <= f64::from(UNIT_TOLERANCE) {
+        1.0
+    } else {
+        1.0 / l2.sqrt()
+    };
+    Ok([(d[0] * s) as f32, (d[1] * s) as f32, (d[2] * s) as f32])
 }
 
 fn material(v: &Value, path: &str) -> Result<Material, SpecError> {

@@ -151,6 +151,25 @@ pub struct TableParams {
 
 const _: () = assert!(core::mem::size_of::<TableParams>() == 32);
 
+/// Directions whose squared length is within this of 1 are used as given (an f32-rounded
+/// unit vector is within 2^-23); others are normalised. Readers apply the same rule, so a
+/// direction that arrives as f32 values is never rounded twice (the mpmath reference mirrors
+/// it in `reference/refcore.py`).
+pub const UNIT_TOLERANCE: f32 = 4.0e-7;
+
+/// `v` as a unit vector under the [`UNIT_TOLERANCE`] rule (zero for a zero or non-finite
+/// vector).
+#[inline]
+pub fn direction(v: [f32; 3]) -> Vec3 {
+    let v = Vec3::from_array(v);
+    let l2 = v.length_squared();
+    if math::abs(l2 - 1.0) <= UNIT_TOLERANCE {
+        v
+    } else {
+        v.normalize_or_zero()
+    }
+}
+
 /// `ξ = (wi + wo)_xy / λ` (1/µm; zero in the mirror direction).
 #[inline]
 pub fn xi_of(wi: Vec3, wo: Vec3, lambda_um: f32) -> Vec2 {
@@ -160,8 +179,8 @@ pub fn xi_of(wi: Vec3, wo: Vec3, lambda_um: f32) -> Vec2 {
 /// Evaluates one query: the BRDF (1/sr, no cosine). Directions below the horizon (or
 /// degenerate) give 0; the result is finite and non-negative for every input.
 pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) -> f32 {
-    let wi = Vec3::from_array(q.wi).normalize_or_zero();
-    let wo = Vec3::from_array(q.wo).normalize_or_zero();
+    let wi = direction(q.wi);
+    let wo = direction(q.wo);
     let sigma = params.sigma_um;
     let lambda = q.lambda_nm * 1.0e-3;
     if !(wi.z > 0.0 && wo.z > 0.0 && sigma > 0.0 && lambda > 0.0) {
