@@ -198,3 +198,29 @@ fn monte_carlo_agrees_with_the_reference() {
         );
     }
 }
+
+#[test]
+fn v_grooves_use_the_numerical_band_integral() {
+    // The triangle profile has no closed form across the scratch; its band integral is
+    // panelled Gauss–Legendre over |M − P|² (4 points per quarter lobe).
+    let mut cases = Vec::new();
+    let mut rng = Rng(62);
+    while cases.len() < 5 {
+        let mut c = random_case(
+            &mut rng,
+            &SweepRanges {
+                alpha: (0.25, 0.6),
+                below: ABOVE,
+                polygon: 0.5,
+            },
+            1,
+        );
+        c.scratch.profile = 1;
+        c.scratch.depth *= 2.0;
+        let r = light_reference_budget(&c.params, &c.query, &c.scratch, 1e-4, 300);
+        if r.err <= 1e-3 * r.value && r.value > 0.0 {
+            cases.push((c, r.value));
+        }
+    }
+    check(&cases, 3, 0.01);
+}
