@@ -22,6 +22,7 @@
 
 pub mod bvh_build;
 pub mod fixtures;
+pub mod ghs;
 pub mod light_configs;
 pub mod light_mc;
 pub mod light_reference;
