@@ -1,4 +1,12 @@
-//! Deterministic workloads shared by the benchmarks (so every backend times the same input).
+//! Deterministic workloads shared by the benchmarks (so every backend times the same input),
+//! and the speed-vs-accuracy charts:
+//!
+//! * `light_chart` (binary): error against cost of the area-light integrals — closed form
+//!   with exact Si, Eq. 29's Si and the fast Si, one band or Gauss–Hermite bands, and Monte
+//!   Carlo with N samples — over a seeded sweep, against the adaptive reference.
+//! * `benches/lights.rs`: timing of the closed forms per light kind and method.
+
+pub mod svg;
 
 pub use scratchwave_cpu::fixtures::SplitMix64 as Rng;
 use scratchwave_kernel::scratch::{Profile, Scratch};

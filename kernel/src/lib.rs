@@ -30,6 +30,7 @@ pub mod bvh;
 pub mod footprint;
 pub mod fresnel;
 pub mod ghs;
+pub mod lights;
 pub mod math;
 pub mod ray;
 pub mod sampling;
