@@ -16,10 +16,16 @@
 //!   ([`scratchwave_kernel::bvh`]); [`scratch_lookup`]: the scratch set the models query;
 //! - [`queries`]: the [`RayQueries`] and [`SegmentRadiusQuery`] traits, implemented here by
 //!   the portable [`TriangleBvh`] / [`SegmentBvh`] and in `scratchwave-embree` by Embree;
-//! - [`mod@reference`]: brute-force oracles; [`fixtures`]: seeded test scenes.
+//! - [`mod@reference`]: brute-force oracles; [`fixtures`]: seeded test scenes;
+//! - [`light_reference`], [`light_mc`], [`light_configs`]: the area-light quadrature
+//!   reference, Monte Carlo estimator and seeded sweep configurations.
 
 pub mod bvh_build;
 pub mod fixtures;
+pub mod ghs;
+pub mod light_configs;
+pub mod light_mc;
+pub mod light_reference;
 pub mod mesh;
 pub mod parallel;
 pub mod queries;

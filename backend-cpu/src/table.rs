@@ -3,8 +3,9 @@
 use crate::parallel::{Backend, map};
 use crate::scratch_lookup::ScratchLookup;
 use scratchwave_kernel::footprint::{self, Ellipse};
+use scratchwave_kernel::ghs::GhsParams;
 use scratchwave_kernel::scratch::Scratch;
-use scratchwave_kernel::table::{TableParams, TableQuery, evaluate};
+use scratchwave_kernel::table::{TableParams, TableQuery, evaluate, evaluate_ghs};
 
 /// Evaluates every query against the scratch set (through the BVH lookup, built once).
 pub fn evaluate_table(
@@ -43,4 +44,13 @@ pub fn footprint_table(
         accurate: footprint::eta_p_accurate(s, e, sigma),
         rho_p: footprint::rho_p_eq18(s, e),
     })
+}
+
+/// Evaluates every query of a GHS table.
+pub fn evaluate_ghs_table(
+    backend: Backend,
+    params: &GhsParams,
+    queries: &[TableQuery],
+) -> Vec<f32> {
+    map(backend, queries, |q| evaluate_ghs(params, q))
 }

@@ -3,27 +3,18 @@
 
 use glam::Vec2;
 use scratchwave_cpu::ScratchLookup;
+use scratchwave_cpu::fixtures::SplitMix64;
 use scratchwave_kernel::scratch::{Scratch, ScratchSet, ScratchSlice};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 
-struct Rng(u64);
-impl Rng {
-    fn u(&mut self) -> f32 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
-
 /// `n` scratches over a square of side `extent` µm, lengths from 0 to 400 µm.
 fn field(n: usize, extent: f32, seed: u64) -> Vec<Scratch> {
-    let mut r = Rng(seed);
+    let mut r = SplitMix64::new(seed);
     (0..n)
         .map(|_| {
-            let c = [extent * r.u(), extent * r.u()];
-            let a = std::f32::consts::TAU * r.u();
-            let h = 200.0 * r.u() * r.u();
+            let c = [extent * r.next_f32(), extent * r.next_f32()];
+            let a = std::f32::consts::TAU * r.next_f32();
+            let h = 200.0 * r.next_f32() * r.next_f32();
             Scratch {
                 center: c,
                 tangent: [a.cos(), a.sin()],
@@ -63,12 +54,12 @@ fn lookup_equals_brute_force() {
         let brute = ScratchSlice {
             scratches: &scratches,
         };
-        let mut r = Rng(7 + n as u64);
+        let mut r = SplitMix64::new(7 + n as u64);
         let queries = if n == 100_000 { 2_000 } else { 5_000 };
         let mut found = 0;
         for _ in 0..queries {
-            let x = Vec2::new(extent * r.u(), extent * r.u());
-            let radius = [30.0, 60.0, 200.0][(r.u() * 3.0) as usize % 3];
+            let x = Vec2::new(extent * r.next_f32(), extent * r.next_f32());
+            let radius = [30.0, 60.0, 200.0][(r.next_f32() * 3.0) as usize % 3];
             let a = collect(&lookup.set(), x, radius);
             assert_eq!(a, collect(&brute, x, radius), "n={n} x={x} r={radius}");
             found += a.len();
@@ -89,7 +80,7 @@ fn models_agree_through_lookup_and_slice() {
     let brute = ScratchSlice {
         scratches: &scratches,
     };
-    let mut r = Rng(5);
+    let mut r = SplitMix64::new(5);
     for model in [Model::Werner, Model::WernerBlended, Model::Velinov] {
         let p = TableParams {
             model: model as u32,
@@ -98,12 +89,12 @@ fn models_agree_through_lookup_and_slice() {
             ..Default::default()
         };
         for _ in 0..500 {
-            let (a, b) = (0.3 * (r.u() - 0.5), 0.3 * (r.u() - 0.5));
+            let (a, b) = (0.3 * (r.next_f32() - 0.5), 0.3 * (r.next_f32() - 0.5));
             let q = TableQuery {
                 wi: [0.0, 0.0, 1.0],
                 wo: [a, b, (1.0 - a * a - b * b).sqrt()],
                 lambda_nm: 550.0,
-                x: [600.0 * r.u(), 600.0 * r.u()],
+                x: [600.0 * r.next_f32(), 600.0 * r.next_f32()],
                 material: scratchwave_kernel::table::Material::constant(1.0),
                 ..Default::default()
             };

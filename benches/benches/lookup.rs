@@ -13,9 +13,9 @@ use std::time::Duration;
 fn field(n: usize, extent: f32, r: &mut Rng) -> Vec<Scratch> {
     (0..n)
         .map(|_| {
-            let c = [extent * r.u(), extent * r.u()];
-            let a = std::f32::consts::TAU * r.u();
-            let h = 100.0 * r.u();
+            let c = [extent * r.next_f32(), extent * r.next_f32()];
+            let a = std::f32::consts::TAU * r.next_f32();
+            let h = 100.0 * r.next_f32();
             Scratch {
                 center: c,
                 tangent: [a.cos(), a.sin()],
@@ -42,11 +42,11 @@ fn lookup(c: &mut Criterion) {
         .warm_up_time(Duration::from_millis(300))
         .measurement_time(Duration::from_secs(2));
     for n in [1_000usize, 10_000, 100_000, 1_000_000] {
-        let mut r = Rng(n as u64);
+        let mut r = Rng::new(n as u64);
         let extent = (n as f32 * 2_000.0).sqrt(); // constant density
         let scratches = field(n, extent, &mut r);
         let pts: Vec<Vec2> = (0..1024)
-            .map(|_| Vec2::new(extent * r.u(), extent * r.u()))
+            .map(|_| Vec2::new(extent * r.next_f32(), extent * r.next_f32()))
             .collect();
         let built = ScratchLookup::new(&scratches, 10.0);
         g.throughput(Throughput::Elements(pts.len() as u64));

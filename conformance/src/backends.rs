@@ -2,6 +2,7 @@
 
 use crate::run::TableBackend;
 use crate::spec::TableSpec;
+use scratchwave_cpu::table::evaluate_ghs_table;
 use scratchwave_cpu::{Backend, evaluate_table};
 
 /// A CPU path (`cpu` = scalar, `simd` = rayon + SIMD code generation).
@@ -17,12 +18,10 @@ impl TableBackend for Cpu {
     }
 
     fn evaluate(&self, spec: &TableSpec) -> Result<Vec<f32>, String> {
-        Ok(evaluate_table(
-            self.0,
-            &spec.params,
-            &spec.scratches,
-            &spec.queries,
-        ))
+        Ok(match &spec.ghs {
+            Some(g) => evaluate_ghs_table(self.0, g, &spec.queries),
+            None => evaluate_table(self.0, &spec.params, &spec.scratches, &spec.queries),
+        })
     }
 }
 

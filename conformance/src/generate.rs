@@ -8,22 +8,10 @@
 use crate::error::SpecError;
 use crate::json::Obj;
 use crate::spec::{TableSpec, table_spec};
+use scratchwave_cpu::fixtures::SplitMix64;
 use scratchwave_kernel::scratch::{Profile, Scratch};
 use scratchwave_kernel::table::{FresnelAngle, Material, TableQuery};
 use serde_json::Value;
-
-/// SplitMix64 uniform in [0, 1).
-struct Rng(u64);
-
-impl Rng {
-    fn u(&mut self) -> f32 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-    }
-}
 
 /// Expands `{"seed", "queries", "scratches", "base": <spec without scratches/queries>}`.
 pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
@@ -54,19 +42,22 @@ pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
         other => other,
     })?;
     let sigma = spec.params.sigma_um;
-    let mut r = Rng(seed);
+    let mut r = SplitMix64::new(seed);
     spec.scratches = (0..ns)
         .map(|i| {
             let far = if i % 7 == 6 { 20.0 } else { 2.0 };
-            let c = [(r.u() - 0.5) * far * sigma, (r.u() - 0.5) * far * sigma];
-            let a = std::f32::consts::TAU * r.u();
+            let c = [
+                (r.next_f32() - 0.5) * far * sigma,
+                (r.next_f32() - 0.5) * far * sigma,
+            ];
+            let a = std::f32::consts::TAU * r.next_f32();
             let h = sigma * [0.05, 0.5, 3.0, 500.0][i % 4];
             Scratch {
                 center: c,
                 tangent: [a.cos(), a.sin()],
                 half_len: h,
-                width: 0.3 + 3.0 * r.u(),
-                depth: 0.02 + 0.6 * r.u(),
+                width: 0.3 + 3.0 * r.next_f32(),
+                depth: 0.02 + 0.6 * r.next_f32(),
                 profile: if i % 2 == 0 {
                     Profile::Rect as u32
                 } else {
@@ -78,14 +69,14 @@ pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
     let first = spec.scratches.first().copied();
     spec.queries = (0..nq)
         .map(|i| {
-            let ti = 1.2 * r.u();
-            let pi = std::f32::consts::TAU * r.u();
+            let ti = 1.2 * r.next_f32();
+            let pi = std::f32::consts::TAU * r.next_f32();
             let mut wi = [ti.sin() * pi.cos(), ti.sin() * pi.sin(), ti.cos()];
-            let lambda_nm = [380.0, 780.0, 380.0 + 400.0 * r.u()][i % 3];
+            let lambda_nm = [380.0, 780.0, 380.0 + 400.0 * r.next_f32()][i % 3];
             let spread = [0.01, 0.1, 0.6][i % 3];
             let (a, b) = (
-                -wi[0] + spread * (r.u() - 0.5),
-                -wi[1] + spread * (r.u() - 0.5),
+                -wi[0] + spread * (r.next_f32() - 0.5),
+                -wi[1] + spread * (r.next_f32() - 0.5),
             );
             let mut wo = [a, b, (1.0 - a * a - b * b).max(0.0).sqrt()];
             match i % 16 {
@@ -105,7 +96,11 @@ pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
                 _ => {}
             }
             let material = if i % 5 == 0 {
-                Material::ior(0.2 + 2.0 * r.u(), 4.0 * r.u(), FresnelAngle::ThetaD)
+                Material::ior(
+                    0.2 + 2.0 * r.next_f32(),
+                    4.0 * r.next_f32(),
+                    FresnelAngle::ThetaD,
+                )
             } else {
                 spec_material(&spec)
             };
@@ -117,7 +112,7 @@ pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
                 wi: n(wi),
                 lambda_nm,
                 wo: n(wo),
-                x: [(r.u() - 0.5) * sigma, (r.u() - 0.5) * sigma],
+                x: [(r.next_f32() - 0.5) * sigma, (r.next_f32() - 0.5) * sigma],
                 material,
                 ..TableQuery::default()
             }

@@ -13,7 +13,8 @@ use std::process::ExitCode;
 const USAGE: &str = "usage:
   scratchwave run [--cases DIR] [--out DIR]      conformance run over the committed cases
   scratchwave table SPEC.json [--backend cpu|simd|all]
-  scratchwave footprint SPEC.json [--backend cpu|simd]";
+  scratchwave footprint SPEC.json [--backend cpu|simd]
+  scratchwave light SPEC.json [--backend cpu|simd]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -117,6 +118,25 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
                 out.push('\n');
             }
             print!("{out}");
+            Ok(ExitCode::SUCCESS)
+        }
+        "light" => {
+            let (pos, flags) = parse_flags(rest, &["backend"])?;
+            let file = one_file(&pos, "light")?;
+            let b = match flag(&flags, "backend") {
+                None | Some("cpu") => Backend::Scalar,
+                Some("simd") => Backend::Simd,
+                Some(other) => {
+                    return Err(Failure::Usage(format!(
+                        "unknown backend {other:?} (cpu, simd)"
+                    )));
+                }
+            };
+            let s = scratchwave_conformance::light_spec::light_spec(&read_json(file)?)?;
+            print!(
+                "{}",
+                scratchwave_conformance::light_spec::light_csv_on(&s, b)
+            );
             Ok(ExitCode::SUCCESS)
         }
         "footprint" => {

@@ -4,6 +4,8 @@
 use crate::error::SpecError;
 use crate::json::{self, Obj};
 use scratchwave_kernel::footprint::Ellipse;
+use scratchwave_kernel::ghs::layers::LayerForm;
+use scratchwave_kernel::ghs::{self, DiffColor, GhsParams, Layer};
 use scratchwave_kernel::scratch::{Profile, Scratch};
 use scratchwave_kernel::table::{
     FresnelAngle, Material, Model, TableParams, TableQuery, UNIT_TOLERANCE,
@@ -24,6 +26,8 @@ pub struct TableSpec {
     pub queries: Vec<TableQuery>,
     /// The spec-level material (queries without their own use it).
     pub default_material: Material,
+    /// Model `ghs`: its material (the other models leave this `None`).
+    pub ghs: Option<GhsParams>,
 }
 
 /// A parsed `scratchwave footprint` spec.
@@ -49,7 +53,11 @@ pub fn table_spec(v: &Value) -> Result<TableSpec, SpecError> {
             "queries",
         ],
     )?;
-    let model = match top.choice("model", &["werner", "werner_blended", "velinov"])? {
+    let model_name = top.choice("model", &["werner", "werner_blended", "velinov", "ghs"])?;
+    if model_name == "ghs" {
+        return ghs_table_spec(&top);
+    }
+    let model = match model_name {
         "werner_blended" => Model::WernerBlended,
         "velinov" => Model::Velinov,
         _ => Model::Werner,
@@ -84,19 +92,46 @@ pub fn table_spec(v: &Value) -> Result<TableSpec, SpecError> {
         params.base_gaussian =
             u32::from(o.opt_choice("base", &["none", "gaussian"])? == Some("gaussian"));
     }
-    let mut queries = Vec::new();
+    let queries = queries(&top, true, Some(material))?;
+    Ok(TableSpec {
+        params,
+        scratches,
+        queries,
+        default_material: material,
+        ghs: None,
+    })
+}
+
+/// The queries of a table; `x` is required when `need_x`, a per-query material is allowed
+/// when `material` is the spec's default.
+fn queries(
+    top: &Obj,
+    need_x: bool,
+    material: Option<Material>,
+) -> Result<Vec<TableQuery>, SpecError> {
+    let mut out = Vec::new();
     for (i, q) in top.arr("queries")?.iter().enumerate() {
         let path = format!("queries[{i}]");
         let q = Obj::new(q, &path, &["wi", "wo", "lambda_nm", "x", "material"])?;
         let wi = direction(&q, "wi")?;
         let wo = direction(&q, "wo")?;
         let lambda_nm = json::positive(q.num("lambda_nm")?, &q.path_of("lambda_nm"), false)?;
-        let x = point(&q, "x")?;
-        let m = match q.get("material") {
-            Some(m) => self::material(m, &q.path_of("material"))?,
-            None => material,
+        let x = if need_x || q.get("x").is_some() {
+            point(&q, "x")?
+        } else {
+            [0.0; 2]
         };
-        queries.push(TableQuery {
+        let m = match (q.get("material"), material) {
+            (Some(m), Some(_)) => self::material(m, &q.path_of("material"))?,
+            (Some(_), None) => {
+                return Err(SpecError::field(
+                    q.path_of("material"),
+                    "per-query materials are not supported by model \"ghs\"",
+                ));
+            }
+            (None, m) => m.unwrap_or_default(),
+        };
+        out.push(TableQuery {
             wi,
             lambda_nm,
             wo,
@@ -105,12 +140,128 @@ pub fn table_spec(v: &Value) -> Result<TableSpec, SpecError> {
             ..TableQuery::default()
         });
     }
+    Ok(out)
+}
+
+/// Model `ghs` (Holzschuch & Pacanowski): the material carries the surface statistics; there
+/// are no scratches, σ or options.
+fn ghs_table_spec(top: &Obj) -> Result<TableSpec, SpecError> {
+    for key in ["sigma_um", "options"] {
+        if top.get(key).is_some() {
+            return Err(SpecError::field(
+                top.path_of(key),
+                "not used by model \"ghs\"",
+            ));
+        }
+    }
+    if let Some(s) = top.get("scratches")
+        && s.as_array().is_none_or(|a| !a.is_empty())
+    {
+        return Err(SpecError::field(
+            top.path_of("scratches"),
+            "model \"ghs\" takes no scratches",
+        ));
+    }
+    let ghs = ghs_material(top.req("material")?, &top.path_of("material"))?;
+    let queries = queries(top, false, None)?;
     Ok(TableSpec {
-        params,
-        scratches,
+        params: TableParams {
+            model: GHS_MODEL_ID,
+            ..TableParams::default()
+        },
+        scratches: Vec::new(),
         queries,
-        default_material: material,
+        default_material: Material::default(),
+        ghs: Some(ghs),
     })
+}
+
+/// `TableParams::model` value recorded for GHS tables (the evaluation goes through
+/// [`TableSpec::ghs`]; the id only keeps reports unambiguous).
+pub const GHS_MODEL_ID: u32 = 3;
+
+/// A GHS material: `{"sigma_s_um", "beta", "p", "b_um", "c", "ior": [n, k], "diff_color"?,
+/// "layer"?}` with the ranges the kernel documents.
+fn ghs_material(v: &Value, path: &str) -> Result<GhsParams, SpecError> {
+    let m = Obj::new(
+        v,
+        path,
+        &[
+            "sigma_s_um",
+            "beta",
+            "p",
+            "b_um",
+            "c",
+            "ior",
+            "diff_color",
+            "layer",
+        ],
+    )?;
+    let range = |key: &str, lo: f64, hi: f64, lo_open: bool| -> Result<f32, SpecError> {
+        let x = m.num(key)?;
+        let ok = if lo_open { x > lo } else { x >= lo } && x <= hi;
+        if ok {
+            json::to_f32(x, &m.path_of(key))
+        } else {
+            let l = if lo_open { "(" } else { "[" };
+            Err(SpecError::field(
+                m.path_of(key),
+                format!("must be in {l}{lo}, {hi}], got {x}"),
+            ))
+        }
+    };
+    let sigma_s_um = range("sigma_s_um", 0.0, 1.0e3, false)?;
+    let beta = range("beta", 0.0, f64::from(ghs::limits::BETA_MAX), true)?;
+    let p = range("p", 0.1, 4.0, false)?;
+    let b_um = range("b_um", 0.0, 1.0e6, true)?;
+    let c = range("c", 1.0, f64::from(ghs::limits::C_MAX), true)?;
+    let [n, k] = m.vec::<2>("ior")?;
+    let ior_path = m.path_of("ior");
+    let n = json::positive(n, &format!("{ior_path}[0]"), false)?;
+    let k = json::positive(k, &format!("{ior_path}[1]"), true)?;
+    let mut params = GhsParams::new(sigma_s_um, beta, p, b_um, c, n, k);
+    params.diff_color = match m.opt_choice("diff_color", &["Q/2", "Q", "F", "none"])? {
+        Some("Q") => DiffColor::Q as u32,
+        Some("F") => DiffColor::Fresnel as u32,
+        Some("none") => DiffColor::None as u32,
+        _ => DiffColor::HalfQ as u32,
+    };
+    if let Some(l) = m.get("layer") {
+        let lp = m.path_of("layer");
+        let l = Obj::new(l, &lp, &["type", "rho_d", "albedo", "form"])?;
+        let (layer, key) = match l.choice("type", &["none", "plastic", "subsurface"])? {
+            "plastic" => (Layer::Plastic, Some("rho_d")),
+            "subsurface" => (Layer::Subsurface, Some("albedo")),
+            _ => (Layer::None, None),
+        };
+        for other in ["rho_d", "albedo", "form"] {
+            if l.get(other).is_some() && key.is_none_or(|k| k != other && other != "form") {
+                return Err(SpecError::field(
+                    l.path_of(other),
+                    "not used by this layer type",
+                ));
+            }
+        }
+        let albedo = match key {
+            Some(k) => {
+                let x = l.num(k)?;
+                if !(0.0..=1.0).contains(&x) {
+                    return Err(SpecError::field(
+                        l.path_of(k),
+                        format!("must be in [0, 1], got {x}"),
+                    ));
+                }
+                x as f32
+            }
+            None => 0.0,
+        };
+        let form = match l.opt_choice("form", &["published", "energy-conserving"])? {
+            Some("energy-conserving") => LayerForm::EnergyConserving,
+            _ => LayerForm::Published,
+        };
+        params = params.with_layer(layer, form, albedo);
+    }
+    Ok(params)
 }
 
 /// Reads a footprint spec from a JSON value.

@@ -24,7 +24,8 @@ fn files(dir: &str) -> Vec<PathBuf> {
 fn reference_tables_are_reproduced_on_cpu() {
     let backends: Vec<Box<dyn TableBackend>> =
         vec![Box::new(Cpu(Backend::Scalar)), Box::new(Cpu(Backend::Simd))];
-    let tables = files("reference/golden/tables");
+    let mut tables = files("reference/golden/tables");
+    tables.extend(files("reference/ghs/golden/tables"));
     assert!(!tables.is_empty(), "no reference tables");
     let mut reports = Vec::new();
     for f in tables {

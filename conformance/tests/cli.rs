@@ -250,3 +250,78 @@ fn usage_errors_exit_2() {
     assert_eq!(missing.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&missing.stderr).contains("/nonexistent.json"));
 }
+
+const GHS: &str = r#"{"model": "ghs",
+  "material": {"sigma_s_um": 0.25, "beta": 0.2, "p": 0.6, "b_um": 2.0, "c": 2.0, "ior": [0.148, 3.652],
+               "layer": {"type": "plastic", "rho_d": 0.5, "form": "energy-conserving"}},
+  "queries": [{"wi": [0.3, 0, 1], "wo": [-0.3, 0.05, 1], "lambda_nm": 550},
+              {"wi": [0, 0, 1], "wo": [0, 0, -1], "lambda_nm": 550}]}"#;
+
+#[test]
+fn ghs_table_runs_and_rejects_misplaced_fields() {
+    let out = run(&["table", "SPEC"], GHS);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<f64> = std::str::from_utf8(&out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2);
+    assert!(lines[0] > 0.0 && lines[1] == 0.0);
+    let m = r#""sigma_s_um": 0.25, "beta": 0.2, "p": 0.6, "b_um": 2.0, "c": 2.0, "ior": [0.148, 3.652]"#;
+    let q = r#"[{"wi": [0, 0, 1], "wo": [0, 0, 1], "lambda_nm": 550}]"#;
+    let spec = |material: &str, extra: &str| {
+        format!(r#"{{"model": "ghs", "material": {{{material}}}, "queries": {q}{extra}}}"#)
+    };
+    rejects(
+        "table",
+        &spec(
+            m,
+            r#", "scratches": [{"p0": [0, 0], "p1": [1, 0], "width": 1, "depth": 0.1}]"#,
+        ),
+        "scratches",
+    );
+    rejects("table", &spec(m, r#", "sigma_um": 10"#), "sigma_um");
+    rejects(
+        "table",
+        &spec(&m.replace("\"c\": 2.0", "\"c\": 1.0"), ""),
+        "material.c",
+    );
+    rejects(
+        "table",
+        &spec(&m.replace("\"p\": 0.6", "\"p\": 9"), ""),
+        "material.p",
+    );
+    rejects(
+        "table",
+        &spec(&format!(r#"{m}, "diff_color": "blue""#), ""),
+        "material.diff_color",
+    );
+    rejects(
+        "table",
+        &spec(
+            &format!(r#"{m}, "layer": {{"type": "plastic", "rho_d": 1.5}}"#),
+            "",
+        ),
+        "material.layer.rho_d",
+    );
+    rejects(
+        "table",
+        &spec(
+            &format!(r#"{m}, "layer": {{"type": "none", "albedo": 0.5}}"#),
+            "",
+        ),
+        "material.layer.albedo",
+    );
+    rejects(
+        "table",
+        &format!(
+            r#"{{"model": "ghs", "material": {{{m}}}, "queries": [{{"wi": [0, 0, 1], "wo": [0, 0, 1], "lambda_nm": 550, "material": {{"F": 1}}}}]}}"#
+        ),
+        "queries[0].material",
+    );
+}

@@ -210,11 +210,20 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
             // chord across the scratch at this u: v = ev − (qb/qc) du ± half_v
             let half_v = ct / sqrt_qc;
             let vc = ev - qb / qc * du;
-            let g = math::gauss_interval(-frame.half_len - u, frame.half_len - u, sigma);
-            let inner = if squared {
-                g * g * math::gauss_interval(vc - half_v, vc + half_v, sigma * FRAC_1_SQRT_2)
+            // Nodes whose chord misses the band |v| < 8σ, or that lie more than 8σ beyond a
+            // segment end, carry a weight below e^{-32}: skip them before any erf.
+            let reach = 8.0 * sigma;
+            let off_band = vc - half_v > reach || vc + half_v < -reach;
+            let off_ends = math::abs(u) > frame.half_len + reach;
+            let inner = if off_band || off_ends {
+                0.0
             } else {
-                g * math::gauss_interval(vc - half_v, vc + half_v, sigma)
+                let g = math::gauss_interval(-frame.half_len - u, frame.half_len - u, sigma);
+                if squared {
+                    g * g * math::gauss_interval(vc - half_v, vc + half_v, sigma * FRAC_1_SQRT_2)
+                } else {
+                    g * math::gauss_interval(vc - half_v, vc + half_v, sigma)
+                }
             };
             total += w * half * inner * half_u * ct;
             i += 1;

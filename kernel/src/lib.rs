@@ -29,8 +29,11 @@
 pub mod bvh;
 pub mod footprint;
 pub mod fresnel;
+pub mod ghs;
+pub mod lights;
 pub mod math;
 pub mod ray;
+pub mod sampling;
 pub mod scratch;
 pub mod segment;
 pub mod table;

@@ -8,6 +8,7 @@
 //! * `velinov`: `F/(A_C λ²) [Σ|S_k|² + (1 − ρc)|B|²·[base = gaussian]]` (Velinov Eqs. 6–7).
 
 use crate::fresnel::fresnel;
+use crate::ghs::{self, GhsParams};
 use crate::math;
 use crate::scratch::{
     DepthTerm, EtaMode, ResponseInputs, ScratchSet, base_response, scratch_response,
@@ -225,5 +226,18 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
         }
     };
     let r = norm * v;
+    if r.is_finite() && r > 0.0 { r } else { 0.0 }
+}
+
+/// Evaluates one query of a GHS table (Holzschuch & Pacanowski): the query's directions and
+/// wavelength through [`ghs::evaluate`]; the query's shading point and material are not used
+/// (the material is `p`). Below the horizon, 0.
+pub fn evaluate_ghs(p: &GhsParams, q: &TableQuery) -> f32 {
+    let wi = direction(q.wi);
+    let wo = direction(q.wo);
+    if !(wi.z > 0.0 && wo.z > 0.0 && q.lambda_nm > 0.0) {
+        return 0.0;
+    }
+    let r = ghs::evaluate(p, wi, wo, q.lambda_nm * 1.0e-3);
     if r.is_finite() && r > 0.0 { r } else { 0.0 }
 }

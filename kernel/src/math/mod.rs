@@ -6,12 +6,16 @@
 //! (`erf`, `hypot`, complex `sqrt`/`exp`, `Si`) are built here from those primitives.
 
 mod complex;
+mod expm1;
 mod faddeeva;
+mod gamma;
 mod gauss_interval;
 mod si;
 
 pub use complex::{C32, cis, cmul_i, cscale, csqrt, one_minus_cis};
+pub use expm1::{expm1, ln1p};
 pub use faddeeva::{faddeeva, faddeeva_lanes};
+pub use gamma::{gamma, gamma_inv, gamma_p, gamma_p_inv, gamma_q, gamma_q_inv, lgamma};
 pub use gauss_interval::{erf, gauss_fourier_interval, gauss_interval};
 pub use si::{si, si_velinov};
 

@@ -1,0 +1,244 @@
+//! Seeded random area-light configurations (scratch, view, light) for the accuracy sweep,
+//! the stability sweep and the speed-vs-accuracy chart.
+//!
+//! Every configuration is built so that the band ξ₁ = 0 crosses the light: a direction
+//! `wi_p` inside the light (above the horizon) is drawn first and the view is chosen with
+//! `(wi_p + wo)_xy · t = 0`. Light sizes, distances, elevations (down to partly below the
+//! horizon) and scratch orientations are drawn from the ranges in [`SweepRanges`].
+
+use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, MAX_VERTICES};
+use scratchwave_kernel::scratch::{Profile, Scratch};
+use scratchwave_kernel::table::Material;
+
+/// A small deterministic generator (SplitMix64), so sweeps replay exactly.
+#[derive(Clone, Debug)]
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// Next 64 random bits.
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn uniform(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// Uniform in [a, b).
+    pub fn range(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * self.uniform()
+    }
+    /// Log-uniform in [a, b).
+    pub fn log_range(&mut self, a: f64, b: f64) -> f64 {
+        (a.ln() + (b.ln() - a.ln()) * self.uniform()).exp()
+    }
+}
+
+/// What was drawn, for reports.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CaseMeta {
+    /// Angular radius of the light (rad; polygons: of the circumscribed cone).
+    pub alpha: f64,
+    /// Elevation of the light centre above the horizon (rad).
+    pub elevation: f64,
+    /// Scratch direction (rad from +x).
+    pub scratch_angle: f64,
+    /// Number of polygon vertices (0: sphere).
+    pub vertices: usize,
+}
+
+/// One configuration.
+#[derive(Clone, Copy, Debug)]
+pub struct LightCase {
+    /// Options.
+    pub params: LightParams,
+    /// The query (view, wavelength, shading point, light).
+    pub query: LightQuery,
+    /// The one scratch.
+    pub scratch: Scratch,
+    /// What was drawn.
+    pub meta: CaseMeta,
+}
+
+/// Ranges of a sweep.
+#[derive(Clone, Copy, Debug)]
+pub struct SweepRanges {
+    /// Angular radius α of the light (rad), log-uniform.
+    pub alpha: (f64, f64),
+    /// Lowest centre elevation as a multiple of −α (1: touching the horizon from below).
+    pub below: f64,
+    /// Probability of a polygon (else a sphere).
+    pub polygon: f64,
+}
+
+impl Default for SweepRanges {
+    fn default() -> Self {
+        SweepRanges {
+            alpha: (0.05, 0.6),
+            below: 0.7,
+            polygon: 0.5,
+        }
+    }
+}
+
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Draws one configuration whose band crosses the light.
+pub fn random_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> LightCase {
+    loop {
+        if let Some(c) = try_case(rng, ranges, eta) {
+            return c;
+        }
+    }
+}
+
+fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> {
+    let alpha = rng.log_range(ranges.alpha.0, ranges.alpha.1);
+    let elevation = rng.range(-ranges.below * alpha, 1.5);
+    let azimuth = rng.range(0.0, std::f64::consts::TAU);
+    let dir = [
+        elevation.cos() * azimuth.cos(),
+        elevation.cos() * azimuth.sin(),
+        elevation.sin(),
+    ];
+    let dist = rng.log_range(1.0, 100.0);
+    let center = [dir[0] * dist, dir[1] * dist, dir[2] * dist];
+    let is_poly = rng.uniform() < ranges.polygon;
+    let (light, vertices, wi_p) = if is_poly {
+        // A radially jittered n-gon, tilted up to 50° away from facing the point.
+        let n = 3 + (rng.uniform() * 6.0) as usize;
+        let r = dist * alpha.tan();
+        let helper = if dir[2].abs() < 0.9 {
+            [0.0, 0.0, 1.0]
+        } else {
+            [1.0, 0.0, 0.0]
+        };
+        let e1 = unit(cross(dir, helper));
+        let e2 = cross(dir, e1);
+        let tilt = rng.range(0.0, 0.87);
+        let (st, ct) = tilt.sin_cos();
+        let n_axis = [
+            ct * dir[0] + st * e1[0],
+            ct * dir[1] + st * e1[1],
+            ct * dir[2] + st * e1[2],
+        ];
+        let a1 = unit(cross(n_axis, e2));
+        let rot = rng.range(0.0, std::f64::consts::TAU);
+        let mut vs = Vec::new();
+        for k in 0..n {
+            let ph = rot + std::f64::consts::TAU * k as f64 / n as f64;
+            let rr = r * rng.range(0.8, 1.2);
+            let (s, c) = ph.sin_cos();
+            vs.push([
+                (center[0] + rr * (c * a1[0] + s * e2[0])) as f32,
+                (center[1] + rr * (c * a1[1] + s * e2[1])) as f32,
+                (center[2] + rr * (c * a1[2] + s * e2[2])) as f32,
+            ]);
+        }
+        // A point inside: random fan triangle, random barycentric.
+        let k = (rng.uniform() * n as f64) as usize % n;
+        let (mut x, mut y) = (rng.uniform(), rng.uniform());
+        if x + y > 1.0 {
+            (x, y) = (1.0 - x, 1.0 - y);
+        }
+        let a = vs[k].map(f64::from);
+        let b = vs[(k + 1) % n].map(f64::from);
+        let p = [
+            center[0] + x * (a[0] - center[0]) + y * (b[0] - center[0]),
+            center[1] + x * (a[1] - center[1]) + y * (b[1] - center[1]),
+            center[2] + x * (a[2] - center[2]) + y * (b[2] - center[2]),
+        ];
+        debug_assert!(n <= MAX_VERTICES);
+        (Light::polygon(&vs), n, unit(p))
+    } else {
+        let cone = if rng.uniform() < 0.5 {
+            Cone::Asin
+        } else {
+            Cone::Atan
+        };
+        let r = match cone {
+            Cone::Asin => dist * alpha.sin(),
+            Cone::Atan => dist * alpha.tan(),
+        };
+        // A direction inside the cone.
+        let helper = if dir[2].abs() < 0.9 {
+            [0.0, 0.0, 1.0]
+        } else {
+            [1.0, 0.0, 0.0]
+        };
+        let e1 = unit(cross(dir, helper));
+        let e2 = cross(dir, e1);
+        let th = alpha * rng.uniform().sqrt();
+        let ph = rng.range(0.0, std::f64::consts::TAU);
+        let (st, ct) = th.sin_cos();
+        let p = [
+            ct * dir[0] + st * (ph.cos() * e1[0] + ph.sin() * e2[0]),
+            ct * dir[1] + st * (ph.cos() * e1[1] + ph.sin() * e2[1]),
+            ct * dir[2] + st * (ph.cos() * e1[2] + ph.sin() * e2[2]),
+        ];
+        let light = Light::sphere(center.map(|v| v as f32), r as f32, cone);
+        (light, 0, p)
+    };
+    if wi_p[2] < 0.02 {
+        return None;
+    }
+    let scratch_angle = rng.range(0.0, std::f64::consts::PI);
+    let t = [scratch_angle.cos(), scratch_angle.sin()];
+    let b = [-t[1], t[0]];
+    let c = -(wi_p[0] * t[0] + wi_p[1] * t[1]);
+    let room = 0.95 - c * c;
+    if room <= 0.0 {
+        return None;
+    }
+    let wb = rng.range(-room.sqrt(), room.sqrt());
+    let wx = c * t[0] + wb * b[0];
+    let wy = c * t[1] + wb * b[1];
+    let wo = [wx, wy, (1.0 - wx * wx - wy * wy).sqrt()];
+    let sb = rng.range(-10.0, 10.0);
+    let scratch = Scratch::from_endpoints(
+        [-150.0 * t[0] + sb * b[0], -150.0 * t[1] + sb * b[1]],
+        [150.0 * t[0] + sb * b[0], 150.0 * t[1] + sb * b[1]],
+        rng.log_range(0.2, 5.0) as f32,
+        rng.range(0.02, 0.5) as f32,
+        Profile::Rect,
+    );
+
+    let query = LightQuery {
+        wo: wo.map(|v| v as f32),
+        lambda_nm: rng.range(380.0, 780.0) as f32,
+        x: [0.0, 0.0],
+        material: Material::constant(1.0),
+        light,
+        ..LightQuery::default()
+    };
+    let params = LightParams {
+        sigma_um: 10.0,
+        eta,
+        ..LightParams::default()
+    };
+    Some(LightCase {
+        params,
+        query,
+        scratch,
+        meta: CaseMeta {
+            alpha,
+            elevation,
+            scratch_angle,
+            vertices,
+        },
+    })
+}

@@ -1,0 +1,362 @@
+//! GHS two-scale BRDF (Holzschuch & Pacanowski 2016, RR-8964, §3–4): a Cook–Torrance lobe
+//! with a generalized Beckmann NDF plus a Generalized Harvey–Shack diffraction lobe with a
+//! K-correlation angle-spread function, optionally over a diffuse layer.
+//!
+//! | parameter | field | meaning |
+//! |---|---|---|
+//! | σs | `sigma_s_um` | RMS height of the diffraction-scale roughness (µm); splits energy between the lobes (Eq. 37) |
+//! | β | `beta` | width of the NDF (slope scale; `p = 1` is Beckmann with α = β) |
+//! | p | `p` | kurtosis of the NDF, supported range [0.1, 4] (clamped) |
+//! | b | `b_um` | correlation length of the K-correlation PSD (µm); larger = narrower diffraction lobe |
+//! | c | `c` | PSD falloff exponent, `c > 1` (clamped to ≥ 1 + 1e-4) |
+//! | η | `n`, `k` | complex IOR of the surface at the evaluated wavelength |
+//! | colour | `diff_color` | diffraction-lobe colour: 0 `Q/2` (default), 1 `Q`, 2 `F(θd)`, 3 none (1) |
+//! | layer | `layer`, `layer_form`, `layer_albedo` | 0 none, 1 plastic (`ρd`), 2 subsurface (`α`); form 0 published, 1 energy-conserving |
+//!
+//! `ρ = ρ_refl + ρ_diff (+ ρ_layer)` (Eq. 34) with
+//! `ρ_refl = exp(−(4π σs cosθd/λ)²) F(θd) D(θh) G / (4 cosθi cosθo)` (Eq. 35, corrected) and
+//! `ρ_diff = (1 − A) S′(f) G · colour` (Eq. 36 with the colour factor the text describes).
+//! Returned without the cosine, in 1/sr; λ in µm. Errata are documented in the sub-modules
+//! ([`energy`], [`g1`], [`ndf`], [`spread`], [`layers`]).
+//!
+//! Not reciprocal as published: `σ_rel²` depends on θi only (Eq. 25).
+
+pub mod color;
+pub mod energy;
+pub mod g1;
+pub mod layers;
+pub mod ndf;
+pub mod presets;
+pub mod spread;
+pub mod tables;
+
+use crate::fresnel::fresnel;
+use crate::math;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use layers::LayerForm;
+use ndf::GenBeckmann;
+use spread::KCorrelation;
+
+pub use crate::sampling::ghs::{pdf, sample};
+
+/// Diffraction-lobe colour (`diff_color`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiffColor {
+    /// `Q/2` (equals `F` in the specular direction). Default.
+    HalfQ = 0,
+    /// `Q` as printed in Eq. 27.
+    Q = 1,
+    /// `F(θd)`, as Löw et al. 2012 substitute.
+    Fresnel = 2,
+    /// No colour factor (Eq. 36 as printed).
+    None = 3,
+}
+
+impl DiffColor {
+    /// Decodes a `u32` (unknown → `HalfQ`).
+    #[inline]
+    pub fn from_u32(v: u32) -> DiffColor {
+        match v {
+            1 => DiffColor::Q,
+            2 => DiffColor::Fresnel,
+            3 => DiffColor::None,
+            _ => DiffColor::HalfQ,
+        }
+    }
+}
+
+/// Layer under the rough interface (`layer`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Layer {
+    /// Single interface (conductors, or a dielectric without a diffuse body).
+    None = 0,
+    /// Diffuse base of reflectance `ρd` under a varnish (Eq. 49).
+    Plastic = 1,
+    /// Participating medium of single-scattering albedo `α` (Eqs. 45–48).
+    Subsurface = 2,
+}
+
+impl Layer {
+    /// Decodes a `u32` (unknown → `None`).
+    #[inline]
+    pub fn from_u32(v: u32) -> Layer {
+        match v {
+            1 => Layer::Plastic,
+            2 => Layer::Subsurface,
+            _ => Layer::None,
+        }
+    }
+}
+
+/// GPU-visible GHS material at one wavelength (`#[repr(C)]`, `Pod`, 48 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GhsParams {
+    /// σs (µm).
+    pub sigma_s_um: f32,
+    /// β.
+    pub beta: f32,
+    /// p.
+    pub p: f32,
+    /// b (µm).
+    pub b_um: f32,
+    /// c.
+    pub c: f32,
+    /// Real part of the IOR.
+    pub n: f32,
+    /// Imaginary part of the IOR (≥ 0).
+    pub k: f32,
+    /// A [`DiffColor`] as `u32`.
+    pub diff_color: u32,
+    /// A [`Layer`] as `u32`.
+    pub layer: u32,
+    /// A [`LayerForm`] as `u32`.
+    pub layer_form: u32,
+    /// `ρd` (plastic) or `α` (subsurface), in [0, 1].
+    pub layer_albedo: f32,
+    /// Explicit padding.
+    pub pad: u32,
+}
+
+const _: () = assert!(core::mem::size_of::<GhsParams>() == 48);
+
+/// Clamp ranges applied by [`Ghs::new`] (documented so callers can validate up front).
+pub mod limits {
+    /// Smallest `β` (a near-mirror NDF).
+    pub const BETA_MIN: f32 = 1.0e-4;
+    /// Largest `β`.
+    pub const BETA_MAX: f32 = 1.0e3;
+    /// Smallest `c − 1`.
+    pub const C_MINUS_1_MIN: f32 = 1.0e-4;
+    /// Largest `c`.
+    pub const C_MAX: f32 = 1.0e4;
+    /// Smallest `b/λ`.
+    pub const B_OVER_LAMBDA_MIN: f32 = 1.0e-6;
+    /// Largest `b/λ`.
+    pub const B_OVER_LAMBDA_MAX: f32 = 1.0e6;
+    /// Largest `σs/λ` (beyond it `A` underflows to 0 everywhere anyway).
+    pub const SIGMA_OVER_LAMBDA_MAX: f32 = 1.0e3;
+    /// Smallest cosine used in `1/cosθ` terms.
+    pub const COS_MIN: f32 = 1.0e-6;
+}
+
+impl GhsParams {
+    /// A single-interface material with the default colour `Q/2`.
+    pub const fn new(
+        sigma_s_um: f32,
+        beta: f32,
+        p: f32,
+        b_um: f32,
+        c: f32,
+        n: f32,
+        k: f32,
+    ) -> Self {
+        GhsParams {
+            sigma_s_um,
+            beta,
+            p,
+            b_um,
+            c,
+            n,
+            k,
+            diff_color: 0,
+            layer: 0,
+            layer_form: 0,
+            layer_albedo: 0.0,
+            pad: 0,
+        }
+    }
+
+    /// The same material with a diffuse layer.
+    pub const fn with_layer(mut self, layer: Layer, form: LayerForm, albedo: f32) -> Self {
+        self.layer = layer as u32;
+        self.layer_form = form as u32;
+        self.layer_albedo = albedo;
+        self
+    }
+
+    /// The same material with another diffraction colour.
+    pub const fn with_diff_color(mut self, c: DiffColor) -> Self {
+        self.diff_color = c as u32;
+        self
+    }
+}
+
+/// A GHS material prepared for one wavelength: clamped parameters and derived constants.
+#[derive(Clone, Copy, Debug)]
+pub struct Ghs {
+    /// σs/λ.
+    pub sigma_over_lambda: f32,
+    /// The NDF.
+    pub ndf: GenBeckmann,
+    /// `ln p` (G1 table row).
+    pub ln_p: f32,
+    /// `β · m(p)`: `v = tanθ · beta_m` is the G1 table's abscissa.
+    pub beta_m: f32,
+    /// The diffraction lobe.
+    pub spread: KCorrelation,
+    /// IOR real part.
+    pub n: f32,
+    /// IOR imaginary part.
+    pub k: f32,
+    /// Diffraction colour.
+    pub diff_color: DiffColor,
+    /// Layer type.
+    pub layer: Layer,
+    /// Layer form.
+    pub layer_form: LayerForm,
+    /// `ρd` or `α`.
+    pub layer_albedo: f32,
+}
+
+/// `x` if finite and within `[lo, hi]`, else the nearest bound (NaN → `lo`).
+#[inline]
+fn sane(x: f32, lo: f32, hi: f32) -> f32 {
+    math::clamp(x, lo, hi)
+}
+
+impl Ghs {
+    /// Clamps `params` into the supported ranges ([`limits`], [`g1::P_MIN`]…) and
+    /// precomputes the wavelength-dependent constants. `lambda_um` is clamped to ≥ 1e-3 µm.
+    pub fn new(params: &GhsParams, lambda_um: f32) -> Ghs {
+        let lambda = sane(lambda_um, 1.0e-3, 1.0e3);
+        let p = sane(params.p, g1::P_MIN, g1::P_MAX);
+        let beta = sane(params.beta, limits::BETA_MIN, limits::BETA_MAX);
+        let ndf = GenBeckmann::new(beta, p);
+        let c = sane(params.c, 1.0 + limits::C_MINUS_1_MIN, limits::C_MAX);
+        let b = sane(
+            params.b_um / lambda,
+            limits::B_OVER_LAMBDA_MIN,
+            limits::B_OVER_LAMBDA_MAX,
+        );
+        Ghs {
+            sigma_over_lambda: sane(
+                params.sigma_s_um / lambda,
+                0.0,
+                limits::SIGMA_OVER_LAMBDA_MAX,
+            ),
+            ndf,
+            ln_p: math::ln(p),
+            beta_m: beta * g1::mean_slope(p),
+            spread: KCorrelation { b, c },
+            n: sane(params.n, 1.0e-3, 1.0e3),
+            k: sane(params.k, 0.0, 1.0e3),
+            diff_color: DiffColor::from_u32(params.diff_color),
+            layer: Layer::from_u32(params.layer),
+            layer_form: LayerForm::from_u32(params.layer_form),
+            layer_albedo: sane(params.layer_albedo, 0.0, 1.0),
+        }
+    }
+
+    /// Smith `G1` for a direction with `cosθ = cos_t` (> 0).
+    #[inline]
+    pub fn g1(&self, cos_t: f32) -> f32 {
+        let c = math::max(cos_t, limits::COS_MIN);
+        let tan = math::sqrt0(1.0 - c * c) / c;
+        g1::g1_from_v(tan * self.beta_m, self.ln_p)
+    }
+
+    /// `σ_rel²` for the incident direction `wi`.
+    #[inline]
+    pub fn sigma_rel_sq(&self, wi: Vec3) -> f32 {
+        self.spread.sigma_rel_sq(math::sqrt0(1.0 - wi.z * wi.z))
+    }
+
+    /// The micro-facet (reflection) lobe, Eq. 35 (corrected).
+    pub fn reflection(&self, wi: Vec3, wo: Vec3) -> f32 {
+        let Some((h, cos_d)) = half_vector(wi, wo) else {
+            return 0.0;
+        };
+        let ci = math::max(wi.z, limits::COS_MIN);
+        let co = math::max(wo.z, limits::COS_MIN);
+        let g = self.g1(ci) * self.g1(co);
+        energy::reflection_attenuation(self.sigma_over_lambda, cos_d)
+            * fresnel(cos_d, self.n, self.k)
+            * self.ndf.d(h.z)
+            * g
+            / (4.0 * ci * co)
+    }
+
+    /// The diffraction lobe, Eq. 36 with colour; `sigma_rel_sq` from [`Self::sigma_rel_sq`].
+    pub fn diffraction(&self, wi: Vec3, wo: Vec3, sigma_rel_sq: f32) -> f32 {
+        let one_minus_a = energy::diffracted_fraction(self.sigma_over_lambda, wi.z, wo.z);
+        if !(one_minus_a > 0.0) || !(sigma_rel_sq > 0.0) {
+            return 0.0;
+        }
+        let (dx, dy) = (wi.x + wo.x, wi.y + wo.y);
+        let r = math::sqrt(dx * dx + dy * dy);
+        let s = self.spread.density(r) / sigma_rel_sq;
+        let g = self.g1(wi.z) * self.g1(wo.z);
+        let colour = match self.diff_color {
+            DiffColor::HalfQ => 0.5 * color::diffraction_color(wi, wo, self.n, self.k),
+            DiffColor::Q => color::diffraction_color(wi, wo, self.n, self.k),
+            DiffColor::Fresnel => match half_vector(wi, wo) {
+                Some((_, cos_d)) => fresnel(cos_d, self.n, self.k),
+                None => 0.0,
+            },
+            DiffColor::None => 1.0,
+        };
+        one_minus_a * s * g * colour
+    }
+
+    /// The diffuse layer's lobe (Eq. 49 or Eqs. 45–48), 0 without a layer.
+    pub fn layer_lobe(&self, wi: Vec3, wo: Vec3) -> f32 {
+        match self.layer {
+            Layer::None => 0.0,
+            Layer::Plastic => layers::plastic(
+                wi.z,
+                wo.z,
+                self.n,
+                self.k,
+                self.layer_albedo,
+                self.layer_form,
+            ),
+            Layer::Subsurface => layers::subsurface(
+                wi.z,
+                wo.z,
+                self.n,
+                self.k,
+                self.layer_albedo,
+                self.layer_form,
+            ),
+        }
+    }
+
+    /// Full BRDF with a precomputed `σ_rel²(θi)` (hoist it when `wi` is fixed).
+    #[inline]
+    pub fn eval_with_sigma_rel(&self, wi: Vec3, wo: Vec3, sigma_rel_sq: f32) -> f32 {
+        if !(wi.z > 0.0) || !(wo.z > 0.0) {
+            return 0.0;
+        }
+        let v = self.reflection(wi, wo)
+            + self.diffraction(wi, wo, sigma_rel_sq)
+            + self.layer_lobe(wi, wo);
+        if v.is_finite() { v } else { 0.0 }
+    }
+
+    /// Full BRDF ρ(wi, wo) in 1/sr, without the cosine.
+    #[inline]
+    pub fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
+        self.eval_with_sigma_rel(wi, wo, self.sigma_rel_sq(wi))
+    }
+}
+
+/// Normalised half vector and `cosθd = wi·h`; `None` when `wi + wo` vanishes.
+#[inline]
+pub fn half_vector(wi: Vec3, wo: Vec3) -> Option<(Vec3, f32)> {
+    let s = wi + wo;
+    let l2 = s.dot(s);
+    if !(l2 > 1.0e-30) {
+        return None;
+    }
+    let h = s * (1.0 / math::sqrt(l2));
+    Some((h, math::clamp(wi.dot(h), 0.0, 1.0)))
+}
+
+/// The GHS BRDF ρ(wi, wo) in 1/sr without the cosine, at wavelength `lambda_um` (µm).
+/// Directions in the local frame (z = normal), pointing away from the surface; 0 below the
+/// horizon. Never NaN/Inf (non-finite intermediate results are masked to 0).
+pub fn evaluate(params: &GhsParams, wi: Vec3, wo: Vec3, lambda_um: f32) -> f32 {
+    Ghs::new(params, lambda_um).eval(wi, wo)
+}

@@ -1,0 +1,70 @@
+//! The band integral of one scratch's incoherent response (Velinov 2018 Eqs. 25–29).
+//!
+//! With `ξ = (wi + wo)_xy / λ` in 1/µm, the projected solid angle is `cos θi dωi =
+//! d(wi_x) d(wi_y) = λ² dξ₁ dξ₂` (Eqs. 23–24; the paper's ξ is dimensionless, so its Jacobian
+//! is 1). The per-scratch BRDF `F/(A_C λ²) |S_k|²` therefore integrates to
+//! `(F/A_C) ∫∫ |S_k|² dξ₁ dξ₂` — the λ² cancels. For the rectangular groove
+//! `|S_k|² = |1 − e^{iκ}|² W² sinc²(πWξ₂) |η(ξ₁)|²` separates; the light is cut along the
+//! line ξ₁ = 0 (the band) and the ξ₁ integral is taken over ℝ:
+//!
+//! * across the scratch (this file): `W² ∫_{q0}^{q1} sinc²(πWξ₂) dξ₂ = A(q1) − A(q0)`,
+//!   `A(q) = W (Si(2πWq) − πWq sinc²(πWq)) / π`. This is Eq. 27's `W² N(ξ, q)` without the
+//!   ξ₁ factor and with q in 1/µm (the paper's `q = λ q_here`; its
+//!   `2 Si(kWq)/(kW) − 4 sin²(kWq/2)/(k²W²q)` is `λ (Si(2πWq)/(πW) − sin²(πWq)/(π²W²q))`),
+//!   written so that `W → 0` and `q → 0` are exact (no division by W or q).
+//! * along the scratch (see [`super::integrate`]): `∫ |η|² dξ₁` by Parseval, which for the
+//!   infinite scratch is Eq. 27's `√π/(σk)` factor (times `2πσ² e^{−s_b²/σ²}`, in 1/µm).
+
+use crate::math;
+
+use super::si_fast::si_fast;
+
+/// Which sine integral the band integral uses.
+// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SiMode {
+    /// [`math::si`], exact to f32.
+    Exact = 0,
+    /// Velinov's Eq. 29 ([`math::si_velinov`]).
+    Velinov = 1,
+    /// [`si_fast`] (|error| ≤ 6e-5, cheaper than `Exact`).
+    Fast = 2,
+}
+
+impl SiMode {
+    /// Decodes a `u32` (unknown → `Exact`).
+    #[inline]
+    pub fn from_u32(v: u32) -> SiMode {
+        match v {
+            1 => SiMode::Velinov,
+            2 => SiMode::Fast,
+            _ => SiMode::Exact,
+        }
+    }
+
+    /// `Si(x)` by this method.
+    #[inline]
+    pub fn si(self, x: f32) -> f32 {
+        match self {
+            SiMode::Exact => math::si(x),
+            SiMode::Velinov => math::si_velinov(x),
+            SiMode::Fast => si_fast(x),
+        }
+    }
+}
+
+/// `A(q) = W² ∫_0^q sinc²(πWt) dt = W (Si(2πWq) − πWq sinc²(πWq)) / π` (µm, q in 1/µm).
+#[inline]
+pub fn band_antiderivative(width: f32, q: f32, si: SiMode) -> f32 {
+    let x = math::PI * width * q;
+    let s = math::sinc(x);
+    width * (si.si(2.0 * x) - x * s * s) / math::PI
+}
+
+/// `W² ∫_{q0}^{q1} sinc²(πWξ₂) dξ₂` (Velinov Eq. 27's `N(ξ, q1) − N(ξ, q0)` across the
+/// scratch); negative when `q1 < q0`.
+#[inline]
+pub fn band_integral(width: f32, q0: f32, q1: f32, si: SiMode) -> f32 {
+    band_antiderivative(width, q1, si) - band_antiderivative(width, q0, si)
+}

@@ -1,0 +1,200 @@
+//! The band ξ₁ = 0 seen on the unit sphere of incident directions, and where it crosses a
+//! light's boundary (the role of Velinov 2018 Eqs. 32–35 and 38–40).
+//!
+//! The band is the line `(wi + wo)_xy · t = 0` in direction-cosine space. On the sphere it is
+//! the small circle `wi · t₃ = c`, `c = −wo_xy · t`, `t₃ = (t, 0)`, of radius `ρ = √(1 − c²)`:
+//!
+//! `wi(φ) = c t₃ + ρ (sin φ b₃ + cos φ n)`, `b₃ = (b, 0)`, `n = z`,
+//!
+//! and the upper hemisphere is `cos φ ≥ 0` (see [`super::horizon`]). Along it
+//! `ξ₂ = (ρ sin φ + wo_xy · b) / λ` is linear in `s = sin φ`, so every interval is kept as a
+//! pair of `s` values in `[−1, 1]`.
+//!
+//! Instead of the paper's half-angle quadratics in the light's own parametrisation, the
+//! crossing of the circle with any plane `wi · m = h` (a light edge's great circle: `h = 0`;
+//! a sphere's cone: `m = d̂`, `h = cos α`) is solved on the circle:
+//! `s m_b + z' m_z = g`, `g = (h − c m_t)/ρ`, `R² = m_b² + m_z²`,
+//! `s = (g m_b ± m_z √(R² − g²))/R²`, `z' = (g m_z ∓ m_b √(R² − g²))/R²`.
+//! Which side of each crossing is lit is decided afterwards by testing interval midpoints,
+//! so tangencies, vertices on the band ("a crossing on two arcs", Eq. 41) and spurious
+//! crossings with the unused part of a great circle need no special cases.
+
+use crate::math;
+use glam::{Vec2, Vec3};
+
+/// Capacity of a [`Breakpoints`] list: two crossings for each edge of the largest polygon
+/// plus the two ends of the half circle.
+pub const MAX_BREAKPOINTS: usize = 2 * super::polygon::MAX_VERTICES + 2;
+
+/// The band of one scratch for one view direction.
+#[derive(Clone, Copy, Debug)]
+pub struct BandCircle {
+    /// `t₃ = (t, 0)`.
+    pub t3: Vec3,
+    /// `b₃ = (b, 0)`.
+    pub b3: Vec3,
+    /// `c = wi · t₃` on the band.
+    pub c: f32,
+    /// Radius `√(1 − c²)`.
+    pub rho: f32,
+    /// `wo_xy · b`.
+    pub wo_b: f32,
+}
+
+impl BandCircle {
+    /// The band of a scratch with unit tangent `t` and bitangent `b` for the view `wo`
+    /// (unit, `z > 0`); `None` when it degenerates to a point (`|wo_xy · t| = 1`).
+    #[inline]
+    pub fn new(tangent: Vec2, bitangent: Vec2, wo: Vec3) -> Option<BandCircle> {
+        BandCircle::new_offset(tangent, bitangent, wo, 0.0)
+    }
+
+    /// The parallel line `(wi + wo)_xy · t = offset` (direction cosines, i.e. ξ₁ = offset/λ).
+    #[inline]
+    pub fn new_offset(tangent: Vec2, bitangent: Vec2, wo: Vec3, offset: f32) -> Option<BandCircle> {
+        let wo_xy = Vec2::new(wo.x, wo.y);
+        let c = offset - wo_xy.dot(tangent);
+        if !(c > -1.0 && c < 1.0) {
+            return None;
+        }
+        let rho = math::sqrt0(1.0 - c * c);
+        if !(rho > 0.0) {
+            return None;
+        }
+        Some(BandCircle {
+            t3: Vec3::new(tangent.x, tangent.y, 0.0),
+            b3: Vec3::new(bitangent.x, bitangent.y, 0.0),
+            c,
+            rho,
+            wo_b: wo_xy.dot(bitangent),
+        })
+    }
+
+    /// The direction at `s = sin φ` on the upper half (`cos φ = √(1 − s²)`).
+    #[inline]
+    pub fn point(&self, s: f32) -> Vec3 {
+        let z = math::sqrt0(1.0 - s * s);
+        self.c * self.t3 + self.rho * (s * self.b3 + z * Vec3::Z)
+    }
+
+    /// `ξ₂` (1/µm) at `s`, for the wavelength `lambda` (µm).
+    #[inline]
+    pub fn xi2(&self, s: f32, lambda: f32) -> f32 {
+        (self.rho * s + self.wo_b) / lambda
+    }
+
+    /// Components `(m_t, m_b, m_z)` of a plane normal in the circle's frame.
+    #[inline]
+    pub fn components(&self, m: Vec3) -> (f32, f32, f32) {
+        (m.dot(self.t3), m.dot(self.b3), m.z)
+    }
+
+    /// Adds to `out` the `s` of the (up to two) upper-half points where the circle meets
+    /// the plane `wi · m = h`. `slack = R − g ≥ 0` may be passed when the caller can form it
+    /// without cancellation (the sphere does); otherwise pass `None`.
+    pub fn plane_crossings(&self, m: Vec3, h: f32, slack: Option<f32>, out: &mut Breakpoints) {
+        let (mt, mb, mz) = self.components(m);
+        let r2 = mb * mb + mz * mz;
+        if !(r2 > 1.0e-24) {
+            return;
+        }
+        let r = math::sqrt(r2);
+        let (g, disc) = match slack {
+            Some(d) => (r - d, d * (2.0 * r - d)),
+            None => {
+                let g = (h - self.c * mt) / self.rho;
+                (g, r2 - g * g)
+            }
+        };
+        if !(disc >= 0.0) {
+            return;
+        }
+        let root = math::sqrt(disc);
+        let mut k = 0;
+        while k < 2 {
+            let sgn = if k == 0 { 1.0 } else { -1.0 };
+            let s = (g * mb + sgn * mz * root) / r2;
+            let z = (g * mz - sgn * mb * root) / r2;
+            if super::horizon::on_upper_half(z) {
+                out.push(math::clamp(s, -1.0, 1.0));
+            }
+            k += 1;
+        }
+    }
+}
+
+/// A short sorted list of `s` values on the half circle, fixed capacity, no allocation.
+#[derive(Clone, Copy, Debug)]
+pub struct Breakpoints {
+    /// Values; only the first `len` are meaningful.
+    pub s: [f32; MAX_BREAKPOINTS],
+    /// Number of values.
+    pub len: usize,
+}
+
+impl Breakpoints {
+    /// The two ends of the upper half circle, `s = ±1` (the horizon).
+    #[inline]
+    pub fn half_circle() -> Breakpoints {
+        let mut b = Breakpoints {
+            s: [0.0; MAX_BREAKPOINTS],
+            len: 0,
+        };
+        b.push(-1.0);
+        b.push(1.0);
+        b
+    }
+
+    /// Appends `s` (ignored when full or not finite).
+    #[inline]
+    pub fn push(&mut self, s: f32) {
+        if self.len < MAX_BREAKPOINTS && s.is_finite() {
+            self.s[self.len] = s;
+            self.len += 1;
+        }
+    }
+
+    /// Sorts ascending (insertion sort: at most a few dozen values).
+    pub fn sort(&mut self) {
+        let mut i = 1;
+        while i < self.len && i < MAX_BREAKPOINTS {
+            let v = self.s[i];
+            let mut j = i;
+            while j > 0 && self.s[j - 1] > v {
+                self.s[j] = self.s[j - 1];
+                j -= 1;
+            }
+            self.s[j] = v;
+            i += 1;
+        }
+    }
+
+    /// Sorts, then calls `visit(s0, s1)` for every maximal run of consecutive sub-intervals
+    /// whose midpoints satisfy `inside` (adjacent lit pieces are merged, so the band
+    /// integral is evaluated once per lit interval).
+    pub fn lit_intervals<I: FnMut(f32) -> bool, V: FnMut(f32, f32)>(
+        &mut self,
+        mut inside: I,
+        mut visit: V,
+    ) {
+        self.sort();
+        let mut open = false;
+        let mut start = 0.0;
+        let mut i = 0;
+        while i + 1 < self.len && i + 1 < MAX_BREAKPOINTS {
+            let (a, b) = (self.s[i], self.s[i + 1]);
+            let lit = b > a && inside(0.5 * (a + b));
+            if lit && !open {
+                start = a;
+                open = true;
+            } else if !lit && open && b > a {
+                visit(start, a);
+                open = false;
+            }
+            i += 1;
+        }
+        if open && self.len > 0 && self.len <= MAX_BREAKPOINTS {
+            visit(start, self.s[self.len - 1]);
+        }
+    }
+}

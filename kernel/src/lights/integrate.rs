@@ -1,0 +1,419 @@
+//! `∫_light f_r cos θi dωi` for the incoherent scratch model (Velinov 2018 Eq. 27), and
+//! the `Pod` records every backend uploads.
+//!
+//! Per scratch k (see [`super::band`]):
+//! `I_k = F/(A_C) · D² · P_k · Σ_lit [A(q1) − A(q0)]`, with
+//! * `D² = |1 − e^{iκ}|²` the depth term (rectangular groove),
+//! * `P_k = ∫ |η_k|² dξ₁` (Parseval): `√π σ e^{−s_b²/σ²}` for the infinite scratch
+//!   (Eq. 27's `√π/(σk)` with Eq. 10's `η_s²`), `e^{−s_b²/σ²} ∫_{seg} e^{−u²/σ²} du` for the
+//!   finite segment,
+//! * the lit intervals `[q0, q1]` of ξ₂ where the band ξ₁ = 0 lies inside the light above
+//!   the horizon ([`super::band_circle`], [`super::sphere`], [`super::polygon`]).
+//!
+//! `F` (and `γ` for the exact depth term) is evaluated once, at the light's centre
+//! direction. The V-shaped groove has no closed form across the scratch; its band integral
+//! is done by panelled Gauss–Legendre over `|M − P|²`.
+//!
+//! Validity: the band model takes the whole Gaussian along ξ₁ wherever the band is lit.
+//! It is accurate when the light's extent across the band (in direction cosines) is large
+//! against `λ/(2πσ)`; lights that only graze the band or are narrower than it are
+//! over- or under-estimated (measured in `backend-cpu/tests/light_reference.rs`).
+
+use super::band::{SiMode, band_integral};
+use super::band_circle::{BandCircle, Breakpoints};
+use super::polygon::{MAX_VERTICES, SphericalPolygon};
+use super::sphere::{Cone, SphereCap};
+use crate::math;
+use crate::scratch::profile::mask_minus_profile;
+use crate::scratch::response::CUTOFF_SIGMAS;
+use crate::scratch::{DepthTerm, EtaMode, Profile, Scratch, ScratchSet, SegmentFrame};
+use crate::table::Material;
+use bytemuck::{Pod, Zeroable};
+use glam::{Vec2, Vec3};
+
+/// [`Light::kind`] of a sphere.
+pub const LIGHT_SPHERE: u32 = 0;
+/// [`Light::kind`] of a polygon.
+pub const LIGHT_POLYGON: u32 = 1;
+
+/// An area light, positions relative to the shading point in any one length unit (the
+/// shading point's own µm offset `x` is negligible against light distances and is not
+/// applied). GPU-visible: 288 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct Light {
+    /// [`LIGHT_SPHERE`] or [`LIGHT_POLYGON`].
+    pub kind: u32,
+    /// A [`Cone`] as `u32` (spheres).
+    pub cone: u32,
+    /// Number of vertices (polygons, 3..=16).
+    pub count: u32,
+    /// Explicit padding.
+    pub pad: u32,
+    /// Sphere centre `xyz` and radius.
+    pub sphere: [f32; 4],
+    /// Polygon vertices (`xyz`, 4th component unused), in order around the polygon.
+    pub vertices: [[f32; 4]; MAX_VERTICES],
+}
+
+const _: () = assert!(core::mem::size_of::<Light>() == 288);
+
+impl Default for Light {
+    fn default() -> Self {
+        Zeroable::zeroed()
+    }
+}
+
+impl Light {
+    /// A sphere light.
+    pub fn sphere(center: [f32; 3], radius: f32, cone: Cone) -> Light {
+        Light {
+            kind: LIGHT_SPHERE,
+            cone: cone as u32,
+            sphere: [center[0], center[1], center[2], radius],
+            ..Light::default()
+        }
+    }
+
+    /// A polygon light from up to [`MAX_VERTICES`] vertices (extra ones are dropped).
+    /// Host side (the std spec reader splits larger polygons into fans).
+    #[cfg(not(target_arch = "spirv"))]
+    pub fn polygon(vertices: &[[f32; 3]]) -> Light {
+        let mut l = Light {
+            kind: LIGHT_POLYGON,
+            ..Light::default()
+        };
+        let mut i = 0;
+        while i < vertices.len() && i < MAX_VERTICES {
+            let v = vertices[i];
+            l.vertices[i] = [v[0], v[1], v[2], 0.0];
+            i += 1;
+        }
+        l.count = i as u32;
+        l
+    }
+}
+
+/// One light query. GPU-visible: 352 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct LightQuery {
+    /// Direction towards the viewer (normalised by the kernel).
+    pub wo: [f32; 3],
+    /// Wavelength (nm).
+    pub lambda_nm: f32,
+    /// Shading point (µm).
+    pub x: [f32; 2],
+    /// Explicit padding.
+    pub pad: [f32; 2],
+    /// Material.
+    pub material: Material,
+    /// The light.
+    pub light: Light,
+}
+
+const _: () = assert!(core::mem::size_of::<LightQuery>() == 352);
+
+/// Options shared by every query. GPU-visible: 32 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct LightParams {
+    /// Coherence σ (µm).
+    pub sigma_um: f32,
+    /// An [`EtaMode`] as `u32`.
+    pub eta: u32,
+    /// A [`DepthTerm`] as `u32`.
+    pub depth_term: u32,
+    /// A [`SiMode`] as `u32`.
+    pub si_mode: u32,
+    /// Bands across ξ₁ (see [`BandRule`]): 0 or 1 → Velinov's single band; 3 or 5 →
+    /// Gauss–Hermite bands.
+    pub bands: u32,
+    /// Explicit padding.
+    pub pad: [u32; 3],
+}
+
+const _: () = assert!(core::mem::size_of::<LightParams>() == 32);
+
+/// The solid angle a light fills, as the band code sees it: a cone or a spherical polygon,
+/// chosen by `kind` (a plain struct rather than a data-carrying `enum`, so no enum tag
+/// reaches SPIR-V).
+#[derive(Clone, Copy, Debug)]
+pub struct LightRegion {
+    /// [`LIGHT_SPHERE`] or [`LIGHT_POLYGON`].
+    pub kind: u32,
+    /// The cone (spheres).
+    pub sphere: SphereCap,
+    /// The spherical polygon (polygons).
+    pub polygon: SphericalPolygon,
+}
+
+impl LightRegion {
+    /// The region of a light record, `None` if it is degenerate or below the horizon.
+    pub fn new(light: &Light) -> Option<LightRegion> {
+        let mut r = LightRegion {
+            kind: LIGHT_SPHERE,
+            sphere: SphereCap::EMPTY,
+            polygon: SphericalPolygon::EMPTY,
+        };
+        if light.kind == LIGHT_POLYGON {
+            r.kind = LIGHT_POLYGON;
+            r.polygon = SphericalPolygon::new(&light.vertices, light.count)?;
+        } else {
+            let s = light.sphere;
+            r.sphere = SphereCap::new(
+                Vec3::new(s[0], s[1], s[2]),
+                s[3],
+                Cone::from_u32(light.cone),
+            )?;
+        }
+        Some(r)
+    }
+
+    /// Whether the unit direction `w` is inside.
+    #[inline]
+    pub fn contains(&self, w: Vec3) -> bool {
+        if self.kind == LIGHT_POLYGON {
+            self.polygon.contains(w)
+        } else {
+            self.sphere.contains(w)
+        }
+    }
+
+    /// Adds the band's boundary crossings.
+    #[inline]
+    pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
+        if self.kind == LIGHT_POLYGON {
+            self.polygon.crossings(band, out)
+        } else {
+            self.sphere.crossings(band, out)
+        }
+    }
+
+    /// A representative direction (for `F` and `γ`), lifted above the horizon.
+    #[inline]
+    pub fn center(&self) -> Vec3 {
+        let c = if self.kind == LIGHT_POLYGON {
+            self.polygon.center
+        } else {
+            self.sphere.axis
+        };
+        Vec3::new(c.x, c.y, math::max(c.z, 1.0e-3)).normalize_or_zero()
+    }
+}
+
+/// How the ξ₁ direction (across the band) is integrated.
+///
+/// Velinov's Eq. 27 evaluates the light's chord on the single line ξ₁ = 0 and multiplies
+/// by the whole Gaussian `∫ e^{−4π²σ²ξ₁²} dξ₁`. That is exact only when the chord does not
+/// change across the band; where a light edge cuts the band at an angle, or the light is
+/// not much wider than the band (`α ≲ 10 λ/(2πσ)`), the chord's curvature in ξ₁ makes it
+/// over- or under-estimate. The Gauss–Hermite rules evaluate the chord on 3 or 5 parallel
+/// lines `ξ₁ = x_k s` (`s = 1/(2√2 πσ)`, the Gaussian's standard deviation) and weight
+/// them, which is exact for chords polynomial in ξ₁ up to degree 5 or 9.
+// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BandRule {
+    /// One band at ξ₁ = 0 (Velinov Eq. 27).
+    Single,
+    /// 3-point Gauss–Hermite (nodes 0, ±√3).
+    Hermite3,
+    /// 5-point Gauss–Hermite.
+    Hermite5,
+}
+
+impl BandRule {
+    /// Decodes [`LightParams::bands`].
+    #[inline]
+    pub fn from_u32(v: u32) -> BandRule {
+        match v {
+            3 => BandRule::Hermite3,
+            5 => BandRule::Hermite5,
+            _ => BandRule::Single,
+        }
+    }
+
+    /// Number of bands.
+    #[inline]
+    pub fn count(self) -> usize {
+        match self {
+            BandRule::Single => 1,
+            BandRule::Hermite3 => 3,
+            BandRule::Hermite5 => 5,
+        }
+    }
+
+    /// Node `i` (in standard deviations) and its weight (weights sum to 1).
+    #[inline]
+    pub fn node(self, i: usize) -> (f32, f32) {
+        match (self, i) {
+            (BandRule::Hermite3, 1) => (-1.732_050_807_568_877_2, 1.0 / 6.0),
+            (BandRule::Hermite3, 2) => (1.732_050_807_568_877_2, 1.0 / 6.0),
+            (BandRule::Hermite3, _) => (0.0, 2.0 / 3.0),
+            (BandRule::Hermite5, 1) => (-1.355_626_179_974_265_9, 0.222_075_922_005_612_6),
+            (BandRule::Hermite5, 2) => (1.355_626_179_974_265_9, 0.222_075_922_005_612_6),
+            (BandRule::Hermite5, 3) => (-2.856_970_013_872_805_6, 0.011_257_411_327_720_69),
+            (BandRule::Hermite5, 4) => (2.856_970_013_872_805_6, 0.011_257_411_327_720_69),
+            (BandRule::Hermite5, _) => (0.0, 0.533_333_333_333_333_3),
+            (BandRule::Single, _) => (0.0, 1.0),
+        }
+    }
+}
+
+/// The lit intervals of the band, reported as `(s0, s1)` pairs on the half circle.
+#[inline]
+pub fn lit_intervals<V: FnMut(f32, f32)>(region: &LightRegion, band: &BandCircle, visit: V) {
+    let mut bp = Breakpoints::half_circle();
+    region.crossings(band, &mut bp);
+    bp.lit_intervals(|s| region.contains(band.point(s)), visit);
+}
+
+/// `∫ |η|² dξ₁` over ℝ (Parseval; 1/µm · µm² = µm).
+#[inline]
+pub fn along_power(mode: EtaMode, frame: &SegmentFrame, x0: Vec2, sigma: f32) -> f32 {
+    let (s_t, s_b) = frame.offset_from(x0);
+    let across = math::exp(-s_b * s_b / (sigma * sigma));
+    let along = match mode {
+        EtaMode::Infinite => math::SQRT_PI * sigma,
+        EtaMode::Finite => math::gauss_interval(
+            s_t - frame.half_len,
+            s_t + frame.half_len,
+            sigma * core::f32::consts::FRAC_1_SQRT_2,
+        ),
+    };
+    across * along
+}
+
+/// Per-wavelength inputs of the across-scratch integral.
+#[derive(Clone, Copy, Debug)]
+pub struct Across {
+    /// Groove profile.
+    pub profile: Profile,
+    /// Width W (µm).
+    pub width: f32,
+    /// Depth D (µm).
+    pub depth: f32,
+    /// Effective `γi + γo`.
+    pub gamma: f32,
+    /// λ (µm).
+    pub lambda: f32,
+    /// Si method (rectangular groove).
+    pub si: SiMode,
+}
+
+/// 4-point Gauss–Legendre nodes and weights on [−1, 1] (positive half).
+const GL4_X: [f32; 2] = [0.339_981_043_584_856_3, 0.861_136_311_594_052_6];
+/// See [`GL4_X`].
+const GL4_W: [f32; 2] = [0.652_145_154_862_546_1, 0.347_854_845_137_453_9];
+/// Most panels the V-groove quadrature uses per interval.
+const MAX_PANELS: u32 = 64;
+
+/// `∫_{q0}^{q1} |M − P|²(ξ₂) dξ₂` (µm² · 1/µm).
+pub fn across_integral(a: &Across, q0: f32, q1: f32) -> f32 {
+    match a.profile {
+        Profile::Rect => {
+            let depth2 =
+                mask_minus_profile(Profile::Rect, 1.0, a.depth, a.gamma, a.lambda, 0.0).norm_sqr();
+            depth2 * band_integral(a.width, q0, q1, a.si)
+        }
+        Profile::Triangle => {
+            // Panels no wider than a quarter of the sinc lobe spacing 1/W.
+            let len = q1 - q0;
+            let want = math::abs(len) * a.width * 4.0 + 1.0;
+            let panels = if want < MAX_PANELS as f32 {
+                want as u32
+            } else {
+                MAX_PANELS
+            };
+            let panels = if panels == 0 { 1 } else { panels };
+            let h = len / panels as f32;
+            let mut acc = 0.0;
+            let mut p = 0;
+            while p < panels {
+                let mid = q0 + (p as f32 + 0.5) * h;
+                let mut i = 0;
+                while i < 4 {
+                    let j = i / 2;
+                    let x = if i % 2 == 0 { -GL4_X[j] } else { GL4_X[j] };
+                    let q = mid + 0.5 * h * x;
+                    let mp = mask_minus_profile(a.profile, a.width, a.depth, a.gamma, a.lambda, q);
+                    acc += GL4_W[j] * mp.norm_sqr();
+                    i += 1;
+                }
+                p += 1;
+            }
+            0.5 * h * acc
+        }
+    }
+}
+
+/// One scratch's `∫ |S_k|² dξ₁ dξ₂` over the lit band (µm²).
+pub fn scratch_band_power(
+    region: &LightRegion,
+    scratch: &Scratch,
+    wo: Vec3,
+    x0: Vec2,
+    eta: EtaMode,
+    sigma: f32,
+    gamma: f32,
+    lambda: f32,
+    si: SiMode,
+    rule: BandRule,
+) -> f32 {
+    let Some(frame) = scratch.frame() else {
+        return 0.0;
+    };
+    let across = Across {
+        profile: Profile::from_u32(scratch.profile),
+        width: scratch.width,
+        depth: scratch.depth,
+        gamma,
+        lambda,
+        si,
+    };
+    // Standard deviation of the band in direction cosines: λ/(2√2 πσ).
+    let sd = lambda / (2.0 * math::SQRT_2 * math::PI * sigma);
+    let mut sum = 0.0;
+    let mut i = 0;
+    while i < rule.count() {
+        let (x, w) = rule.node(i);
+        if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, x * sd) {
+            let mut part = 0.0;
+            lit_intervals(region, &band, |s0, s1| {
+                part += across_integral(&across, band.xi2(s0, lambda), band.xi2(s1, lambda));
+            });
+            sum += w * part;
+        }
+        i += 1;
+    }
+    sum * along_power(eta, &frame, x0, sigma)
+}
+
+/// `∫_light f_r cos θi dωi` (unit radiance) for the incoherent model summed over the
+/// scratches near `x`: finite, ≥ 0 for every input (0 for degenerate lights, views or
+/// lights below the horizon).
+pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: &S) -> f32 {
+    let wo = Vec3::from_array(q.wo).normalize_or_zero();
+    let sigma = params.sigma_um;
+    let lambda = q.lambda_nm * 1.0e-3;
+    if !(wo.z > 0.0 && sigma > 0.0 && lambda > 0.0 && sigma.is_finite() && lambda.is_finite()) {
+        return 0.0;
+    }
+    let Some(region) = LightRegion::new(&q.light) else {
+        return 0.0;
+    };
+    let wc = region.center();
+    let gamma = DepthTerm::from_u32(params.depth_term).gamma(wc.z + wo.z);
+    let eta = EtaMode::from_u32(params.eta);
+    let si = SiMode::from_u32(params.si_mode);
+    let rule = BandRule::from_u32(params.bands);
+    let x0 = Vec2::from_array(q.x);
+    let mut power = 0.0;
+    set.for_each_near(x0, CUTOFF_SIGMAS * sigma, |s: Scratch| {
+        power += scratch_band_power(&region, &s, wo, x0, eta, sigma, gamma, lambda, si, rule);
+    });
+    let f = q.material.reflectance(wc, wo);
+    let r = f * power / (math::PI * sigma * sigma);
+    if r.is_finite() && r > 0.0 { r } else { 0.0 }
+}

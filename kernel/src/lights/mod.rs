@@ -1,0 +1,29 @@
+//! Area lights: the incoherent scratch response integrated over the solid angle of a
+//! spherical or polygonal light in closed form (Velinov 2018 §3.4, Eqs. 19–41).
+//!
+//! | file | what |
+//! |---|---|
+//! | `band` | the across-scratch band integral `A(q1) − A(q0)` (Eq. 27), [`SiMode`] |
+//! | `si_fast` | a cheap Si (|err| ≤ 6e-5) beside Eq. 29 and the exact one |
+//! | `band_circle` | the band ξ₁ = 0 as a circle of directions; crossings with planes |
+//! | `horizon` | clipping at the horizon |
+//! | `sphere` | sphere cone (`asin` true, `atan` Eq. 31), its crossings (Eqs. 30–35) |
+//! | `polygon` | spherical polygons, their crossings (Eqs. 36–41) |
+//! | `integrate` | `Pod` records and [`light_integral`] |
+
+pub mod band;
+pub mod band_circle;
+pub mod horizon;
+pub mod integrate;
+pub mod polygon;
+pub mod si_fast;
+pub mod sphere;
+
+pub use band::{SiMode, band_antiderivative, band_integral};
+pub use integrate::{
+    BandRule, LIGHT_POLYGON, LIGHT_SPHERE, Light, LightParams, LightQuery, LightRegion,
+    light_integral,
+};
+pub use polygon::{MAX_VERTICES, SphericalPolygon};
+pub use si_fast::si_fast;
+pub use sphere::{Cone, SphereCap};

@@ -1,0 +1,131 @@
+//! Polygonal lights as spherical polygons (Velinov 2018 §3.4.2, Eqs. 36–41).
+//!
+//! Each vertex `V` (relative to the shading point) projects to `U = V/|V|` (Eq. 36); a
+//! straight edge projects onto the great arc between its ends, whose plane has normal
+//! `U_m × U_{m+1}`. The band crosses each edge plane where [`super::band_circle`] says
+//! (Eqs. 38–40 solve the same problem in the arc's own parametrisation).
+//!
+//! The polygon is the union of the fan of spherical triangles `(ĉ, U_m, U_{m+1})` around the
+//! normalised vertex mean `ĉ` — exact for every polygon that is star-shaped about `ĉ`
+//! (all convex ones, and the star-shaped triangle sets of Velinov Fig. 10); either winding.
+//! Degenerate triangles (collinear or repeated vertices, zero area, a vertex at the shading
+//! point, the polygon's plane through the point) contain nothing. Emitters are two-sided.
+
+use super::band_circle::{BandCircle, Breakpoints};
+use crate::math;
+use glam::Vec3;
+
+/// Capacity of a polygon light (larger polygons are split into fans by the std side).
+pub const MAX_VERTICES: usize = 16;
+
+/// Below this `|det(ĉ, U_m, U_{m+1})|` a fan triangle counts as degenerate.
+const MIN_DET: f32 = 1.0e-12;
+
+/// A spherical polygon with precomputed edge and spoke planes.
+#[derive(Clone, Copy, Debug)]
+pub struct SphericalPolygon {
+    /// Number of vertices (3..=[`MAX_VERTICES`]).
+    pub count: usize,
+    /// Edge plane normals `U_m × U_{m+1}`.
+    edge: [Vec3; MAX_VERTICES],
+    /// Spoke plane normals `ĉ × U_m`.
+    spoke: [Vec3; MAX_VERTICES],
+    /// Orientation sign of fan triangle m (0: degenerate).
+    orient: [f32; MAX_VERTICES],
+    /// Normalised vertex mean ĉ.
+    pub center: Vec3,
+}
+
+impl SphericalPolygon {
+    /// The empty polygon (contains nothing).
+    pub const EMPTY: SphericalPolygon = SphericalPolygon {
+        count: 0,
+        edge: [Vec3::ZERO; MAX_VERTICES],
+        spoke: [Vec3::ZERO; MAX_VERTICES],
+        orient: [0.0; MAX_VERTICES],
+        center: Vec3::Z,
+    };
+
+    /// Projects `count` vertices (`xyz` of each `[f32; 4]`, relative to the shading point).
+    /// `None` for fewer than 3 vertices, non-finite input, or a polygon entirely below the
+    /// horizon.
+    #[allow(clippy::manual_range_contains)] // see the comparison below
+    pub fn new(vertices: &[[f32; 4]; MAX_VERTICES], count: u32) -> Option<SphericalPolygon> {
+        let n = count as usize;
+        // Plain comparisons: `RangeInclusive::contains` goes through `Bound<&usize>`, whose
+        // pointer is not a logical pointer on SPIR-V (spirv-val rejects it).
+        if n < 3 || n > MAX_VERTICES {
+            return None;
+        }
+        let mut u = [Vec3::ZERO; MAX_VERTICES];
+        let mut sum = Vec3::ZERO;
+        let mut max_z = f32::NEG_INFINITY;
+        let mut i = 0;
+        while i < n && i < MAX_VERTICES {
+            let v = vertices[i];
+            let p = Vec3::new(v[0], v[1], v[2]);
+            if !p.is_finite() {
+                return None;
+            }
+            u[i] = p.normalize_or_zero();
+            sum += u[i];
+            max_z = math::max(max_z, u[i].z);
+            i += 1;
+        }
+        if super::horizon::all_below(max_z) {
+            return None;
+        }
+        let center = sum.normalize_or_zero();
+        let mut poly = SphericalPolygon {
+            count: n,
+            edge: [Vec3::ZERO; MAX_VERTICES],
+            spoke: [Vec3::ZERO; MAX_VERTICES],
+            orient: [0.0; MAX_VERTICES],
+            center,
+        };
+        let mut m = 0;
+        while m < n && m < MAX_VERTICES {
+            let next = if m + 1 < n { m + 1 } else { 0 };
+            let a = u[m];
+            let b = if next < MAX_VERTICES { u[next] } else { a };
+            poly.edge[m] = a.cross(b);
+            poly.spoke[m] = center.cross(a);
+            let det = poly.edge[m].dot(center);
+            poly.orient[m] = if math::abs(det) > MIN_DET {
+                math::sign(det)
+            } else {
+                0.0
+            };
+            m += 1;
+        }
+        Some(poly)
+    }
+
+    /// Whether the unit direction `w` is inside one of the fan triangles.
+    pub fn contains(&self, w: Vec3) -> bool {
+        let mut m = 0;
+        while m < self.count && m < MAX_VERTICES {
+            let o = self.orient[m];
+            let next = if m + 1 < self.count { m + 1 } else { 0 };
+            if o != 0.0 && next < MAX_VERTICES {
+                let inside = o * self.edge[m].dot(w) >= 0.0
+                    && o * self.spoke[m].dot(w) >= 0.0
+                    && o * self.spoke[next].dot(w) <= 0.0;
+                if inside {
+                    return true;
+                }
+            }
+            m += 1;
+        }
+        false
+    }
+
+    /// Adds where the band crosses the great circles of the polygon's edges.
+    pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
+        let mut m = 0;
+        while m < self.count && m < MAX_VERTICES {
+            band.plane_crossings(self.edge[m], 0.0, None, out);
+            m += 1;
+        }
+    }
+}

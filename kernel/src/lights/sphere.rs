@@ -1,0 +1,108 @@
+//! Spherical lights (Velinov 2018 §3.4.1, Eqs. 30–35).
+//!
+//! Seen from the shading point, a sphere of radius `r` at distance `d` fills the cone of
+//! half-angle `α = asin(r/d)` around its centre direction `d̂`. Velinov's Eq. 31 normalises
+//! the points of a disk of radius `r` perpendicular to `d̂` instead, which is the cone
+//! `α = atan(r/d)` (an erratum: that disk is the sphere's great disk, which lies behind the
+//! silhouette circle — radius `r cos α` at distance `d cos² α` — and looks smaller); both are
+//! offered ([`Cone`]). The disk's solid angle `2π(1 − cos atan(r/d))` falls short of the
+//! sphere's `2π(1 − cos asin(r/d))` by 1.0 % at `r/d = 0.1`, 9 % at 0.3 and 37 % at 0.7.
+//!
+//! Crossings of the band with the cone boundary `wi · d̂ = cos α` use the circle solution of
+//! [`super::band_circle`] with the slack `R − g = (cos β − cos α)/ρ =
+//! 2 sin((α+β)/2) sin((α−β)/2)/ρ`, `β` the angle from `d̂` to the band circle, formed without
+//! the cancellation of `cos β − cos α` that makes the printed quadratic (Eq. 34) lose all
+//! f32 digits for lights below ~1e-3 rad.
+
+use super::band_circle::{BandCircle, Breakpoints};
+use crate::math;
+use glam::Vec3;
+
+/// Which cone a sphere subtends.
+// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cone {
+    /// The true sphere: `α = asin(r/d)` (`α = π`, every direction, when `d ≤ r`).
+    Asin = 0,
+    /// Velinov's Eq. 31 (a disk facing the point): `α = atan(r/d)`.
+    Atan = 1,
+}
+
+impl Cone {
+    /// Decodes a `u32` (unknown → `Asin`).
+    #[inline]
+    pub fn from_u32(v: u32) -> Cone {
+        if v == 1 { Cone::Atan } else { Cone::Asin }
+    }
+}
+
+/// The cone of directions a spherical light fills.
+#[derive(Clone, Copy, Debug)]
+pub struct SphereCap {
+    /// Unit centre direction `d̂`.
+    pub axis: Vec3,
+    /// Half-angle α in `[0, π]`.
+    pub alpha: f32,
+    /// `|wi − d̂|²` on the boundary: `4 sin²(α/2)`.
+    chord2: f32,
+}
+
+impl SphereCap {
+    /// The empty cap (contains nothing).
+    pub const EMPTY: SphereCap = SphereCap {
+        axis: Vec3::Z,
+        alpha: 0.0,
+        chord2: -1.0,
+    };
+
+    /// The cap of a sphere (centre relative to the shading point, radius, same units).
+    /// `None` when the sphere is degenerate (`r ≤ 0`, centre at the point for `Atan`, or
+    /// not finite) or lies entirely below the horizon.
+    pub fn new(center: Vec3, radius: f32, cone: Cone) -> Option<SphereCap> {
+        let d = center.length();
+        if !(radius > 0.0) || !d.is_finite() || !radius.is_finite() {
+            return None;
+        }
+        if super::horizon::sphere_below(center.z, radius) {
+            return None;
+        }
+        let axis = center.normalize_or_zero();
+        let alpha = match cone {
+            Cone::Asin if d <= radius => math::PI,
+            Cone::Asin => math::asin(radius / d),
+            Cone::Atan => math::atan2(radius, d),
+        };
+        if !(alpha > 0.0) || (axis == Vec3::ZERO && alpha < math::PI) {
+            return None;
+        }
+        let h = math::sin(0.5 * alpha);
+        Some(SphereCap {
+            axis,
+            alpha,
+            chord2: 4.0 * h * h,
+        })
+    }
+
+    /// Whether the direction `w` (unit) is inside the cone.
+    #[inline]
+    pub fn contains(&self, w: Vec3) -> bool {
+        self.alpha >= math::PI || (w - self.axis).length_squared() <= self.chord2
+    }
+
+    /// Adds where the band crosses the cone boundary (at most two points).
+    pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
+        if self.alpha >= math::PI {
+            return;
+        }
+        let (mt, mb, mz) = band.components(self.axis);
+        let r = math::sqrt(mb * mb + mz * mz);
+        let theta_d = math::atan2(r, mt);
+        let theta_c = math::atan2(band.rho, band.c);
+        let beta = math::abs(theta_d - theta_c);
+        let slack =
+            2.0 * math::sin(0.5 * (self.alpha + beta)) * math::sin(0.5 * (self.alpha - beta))
+                / band.rho;
+        band.plane_crossings(self.axis, math::cos(self.alpha), Some(slack), out);
+    }
+}
