@@ -236,30 +236,77 @@ pub trait BvhVisitor {
 ///
 /// Terminates on any input: the node index strictly increases, even for a corrupt skip index.
 pub fn traverse<V: BvhVisitor>(nodes: &[BvhNode], visitor: &mut V) -> ControlFlow<()> {
-    let n = nodes.len();
-    let mut i = 0usize;
-    while i < n {
-        let node = nodes[i];
-        let entered = visitor.enter(&node.bounds);
-        if node.is_leaf() {
-            if entered {
-                let mut k = 0u32;
-                while k < node.count {
-                    if visitor.primitive(node.link.wrapping_add(k)).is_break() {
-                        return ControlFlow::Break(());
-                    }
-                    k += 1;
-                }
-            }
-            i += 1;
-        } else if entered {
-            i += 1;
-        } else {
-            let skip = node.link as usize;
-            i = if skip > i { skip } else { i + 1 };
+    let mut cursor = BvhCursor::default();
+    while let Some(slot) = next_slot(nodes, &mut cursor, |b: &Aabb| visitor.enter(b)) {
+        if visitor.primitive(slot).is_break() {
+            return ControlFlow::Break(());
         }
     }
     ControlFlow::Continue(())
+}
+
+/// Where a resumable traversal stands: the next node to test, and the slots `slot..end` of
+/// the leaf being drained. Plain integers, so a shader keeps it in registers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BvhCursor {
+    /// Next node to test.
+    pub node: u32,
+    /// Next slot of the current leaf.
+    pub slot: u32,
+    /// One past the current leaf's last slot.
+    pub end: u32,
+}
+
+/// The next primitive slot of an entered leaf, resuming at `cursor` (start from
+/// `BvhCursor::default()`); `None` once the traversal is done. `enter` decides per node box
+/// as in [`BvhVisitor::enter`]. This is the one implementation of the skip-pointer walk:
+/// [`traverse`] is a loop over it, and GPU code calls it directly with a `move` closure (no
+/// captured pointers, which rust-gpu cannot store).
+///
+/// Terminates on any input: the node index strictly increases, even for a corrupt skip index.
+#[inline]
+pub fn next_slot<E: FnMut(&Aabb) -> bool>(
+    nodes: &[BvhNode],
+    cursor: &mut BvhCursor,
+    mut enter: E,
+) -> Option<u32> {
+    let n = nodes.len();
+    loop {
+        if cursor.slot < cursor.end {
+            let s = cursor.slot;
+            cursor.slot += 1;
+            return Some(s);
+        }
+        let i = cursor.node as usize;
+        if i >= n {
+            return None;
+        }
+        let node = nodes[i];
+        let entered = enter(&node.bounds);
+        cursor.node += 1;
+        if node.is_leaf() {
+            if entered {
+                cursor.slot = node.link;
+                cursor.end = node.link.wrapping_add(node.count).max(node.link);
+            }
+        } else if !entered && node.link > cursor.node {
+            cursor.node = node.link;
+        }
+    }
+}
+
+/// The next slot of a leaf whose box lies within `radius` of `p` (conservatively, as in
+/// [`for_each_near_point`]), resuming at `cursor`.
+#[inline]
+pub fn next_near_point(
+    nodes: &[BvhNode],
+    cursor: &mut BvhCursor,
+    p: [f32; 3],
+    radius: f32,
+) -> Option<u32> {
+    let r = radius * (1.0 + RADIUS_SLACK);
+    let r2 = r * r;
+    next_slot(nodes, cursor, move |b: &Aabb| b.distance2_to_point(p) <= r2)
 }
 
 /// Relative slack applied to query radii so that rounding in the box test can only add

@@ -20,7 +20,7 @@ pub mod probe;
 use bytemuck::{Pod, Zeroable};
 use scratchwave_kernel::bvh::BvhNode;
 use scratchwave_kernel::footprint::{self, Ellipse};
-use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
+use scratchwave_kernel::scratch::{Scratch, ScratchBvh};
 use scratchwave_kernel::table::{self, Model, TableParams, TableQuery};
 use spirv_std::glam::UVec3;
 use spirv_std::spirv;
@@ -51,19 +51,15 @@ const VELINOV: u32 = Model::Velinov as u32;
 /// [`table::evaluate`] with the model fixed to `model` (a [`Model`] id): one BRDF value per
 /// query.
 ///
-/// The host uploads the CPU backend's lookup: BVH `nodes` and the scratches in slot order.
-/// Interim: the scratches are scanned in slot order ([`ScratchSlice`]) instead of through
-/// `ScratchBvh`, whose `scratches.get(slot)` (kernel/src/scratch/set.rs) rust-gpu cannot
-/// compile (`Option<&T>` from a storage buffer: "cannot convert pointers to integers").
-/// The scan visits the same scratches in the same order as the BVH traversal (slots are
-/// numbered in depth-first leaf order and both apply the same exact distance test), so the
-/// sums are the CPU's; only the cost is O(n) instead of O(log n) per query.
+/// The host uploads the CPU backend's lookup: BVH `nodes` and the scratches in slot order,
+/// and the kernel traverses them exactly as on the CPU ([`ScratchBvh`], a cursor-driven
+/// stackless walk with no closures capturing references, which rust-gpu cannot store).
 #[inline]
 fn table_entry(
     model: u32,
     id: UVec3,
     params: &[TableParams],
-    _nodes: &[BvhNode],
+    nodes: &[BvhNode],
     scratches: &[Scratch],
     queries: &[TableQuery],
     out: &mut [f32],
@@ -71,7 +67,7 @@ fn table_entry(
     let i = id.x as usize;
     if i < out.len() {
         let params = TableParams { model, ..params[0] };
-        out[i] = table::evaluate(&params, &queries[i], &ScratchSlice { scratches });
+        out[i] = table::evaluate(&params, &queries[i], &ScratchBvh { nodes, scratches });
     }
 }
 

@@ -26,7 +26,7 @@ use super::sphere::{Cone, SphereCap};
 use crate::math;
 use crate::scratch::profile::mask_minus_profile;
 use crate::scratch::response::CUTOFF_SIGMAS;
-use crate::scratch::{DepthTerm, EtaMode, Profile, Scratch, ScratchSet, SegmentFrame};
+use crate::scratch::{DepthTerm, EtaMode, NearCursor, Profile, Scratch, ScratchSet, SegmentFrame};
 use crate::table::Material;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
@@ -410,9 +410,10 @@ pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: 
     let rule = BandRule::from_u32(params.bands);
     let x0 = Vec2::from_array(q.x);
     let mut power = 0.0;
-    set.for_each_near(x0, CUTOFF_SIGMAS * sigma, |s: Scratch| {
+    let mut cursor = NearCursor::default();
+    while let Some(s) = set.next_near(&mut cursor, x0, CUTOFF_SIGMAS * sigma) {
         power += scratch_band_power(&region, &s, wo, x0, eta, sigma, gamma, lambda, si, rule);
-    });
+    }
     let f = q.material.reflectance(wc, wo);
     let r = f * power / (math::PI * sigma * sigma);
     if r.is_finite() && r > 0.0 { r } else { 0.0 }

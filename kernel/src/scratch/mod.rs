@@ -20,5 +20,5 @@ pub use response::{
     ResponseInputs, ScratchTerms, base_response, scratch_area_density, scratch_response,
 };
 pub use segment::{Scratch, SegmentFrame};
-pub use set::{ScratchBvh, ScratchSet, ScratchSlice};
+pub use set::{NearCursor, ScratchBvh, ScratchSet, ScratchSlice};
 pub use spatial_phase::{EtaMode, eta_finite, eta_infinite};

@@ -2,8 +2,7 @@
 //! and the scratch area density ρc (Werner §5, Velinov Eq. 17 corrected).
 
 use super::profile::{Profile, mask_minus_profile};
-use super::segment::Scratch;
-use super::set::ScratchSet;
+use super::set::{NearCursor, ScratchSet};
 use super::spatial_phase::{EtaMode, eta, xi_local};
 use crate::math::{self, C32};
 use glam::Vec2;
@@ -60,7 +59,8 @@ pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTe
         area_density: 0.0,
     };
     let sigma = q.sigma;
-    set.for_each_near(q.x0, CUTOFF_SIGMAS * sigma, |s: Scratch| {
+    let mut cursor = NearCursor::default();
+    while let Some(s) = set.next_near(&mut cursor, q.x0, CUTOFF_SIGMAS * sigma) {
         if let Some(frame) = s.frame() {
             let (_, xi2) = xi_local(&frame, q.xi);
             let profile = Profile::from_u32(s.profile);
@@ -72,7 +72,7 @@ pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTe
                 terms.area_density += area_density_of(&frame, s.width, q.x0, sigma);
             }
         }
-    });
+    }
     terms
 }
 
@@ -92,10 +92,11 @@ fn area_density_of(frame: &super::SegmentFrame, width: f32, x0: Vec2, sigma: f32
 /// does ρc: it can exceed 1 where scratches cross (a documented model limitation).
 pub fn scratch_area_density<S: ScratchSet>(set: &S, x0: Vec2, sigma: f32) -> f32 {
     let mut rho = 0.0;
-    set.for_each_near(x0, CUTOFF_SIGMAS * sigma, |s: Scratch| {
+    let mut cursor = NearCursor::default();
+    while let Some(s) = set.next_near(&mut cursor, x0, CUTOFF_SIGMAS * sigma) {
         if let Some(frame) = s.frame() {
             rho += area_density_of(&frame, s.width, x0, sigma);
         }
-    });
+    }
     rho
 }

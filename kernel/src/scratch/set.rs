@@ -5,16 +5,29 @@
 //! GPU run the same model code whatever the lookup.
 
 use super::segment::Scratch;
-use crate::bvh::{BvhNode, for_each_near_point};
-use core::ops::ControlFlow;
+use crate::bvh::{BvhCursor, BvhNode, next_near_point};
 use glam::Vec2;
 
+/// Where a "scratches near x0" enumeration stands (see [`ScratchSet::next_near`]).
+pub type NearCursor = BvhCursor;
+
 /// A set of scratches that can enumerate the ones within a radius of a point.
+///
+/// The enumeration is a cursor (`next_near`), not a callback, so the models run it as a plain
+/// `while let` loop: rust-gpu cannot store closures that capture the models' accumulators
+/// by reference, and a cursor needs no closure at all.
 pub trait ScratchSet {
-    /// Calls `visit` once for every scratch whose distance to `x0` is at most `radius`
-    /// (it may also visit a few farther ones; the models weight them by the Gaussian window
-    /// anyway, so extra visits change nothing but cost).
-    fn for_each_near<F: FnMut(Scratch)>(&self, x0: Vec2, radius: f32, visit: F);
+    /// The next scratch whose distance to `x0` is at most `radius`, resuming at `cursor`
+    /// (start from `NearCursor::default()`); `None` when there are no more.
+    fn next_near(&self, cursor: &mut NearCursor, x0: Vec2, radius: f32) -> Option<Scratch>;
+
+    /// Calls `visit` once for every scratch within `radius` of `x0` (host convenience).
+    fn for_each_near<F: FnMut(Scratch)>(&self, x0: Vec2, radius: f32, mut visit: F) {
+        let mut cursor = NearCursor::default();
+        while let Some(s) = self.next_near(&mut cursor, x0, radius) {
+            visit(s);
+        }
+    }
 }
 
 /// Brute force over a slice: O(n) per query, the reference for every faster lookup.
@@ -25,15 +38,15 @@ pub struct ScratchSlice<'a> {
 }
 
 impl ScratchSet for ScratchSlice<'_> {
-    fn for_each_near<F: FnMut(Scratch)>(&self, x0: Vec2, radius: f32, mut visit: F) {
-        let mut i = 0;
-        while i < self.scratches.len() {
-            let s = self.scratches[i];
+    fn next_near(&self, cursor: &mut NearCursor, x0: Vec2, radius: f32) -> Option<Scratch> {
+        while (cursor.slot as usize) < self.scratches.len() {
+            let s = self.scratches[cursor.slot as usize];
+            cursor.slot += 1;
             if s.distance_to(x0) <= radius {
-                visit(s);
+                return Some(s);
             }
-            i += 1;
         }
+        None
     }
 }
 
@@ -49,15 +62,16 @@ pub struct ScratchBvh<'a> {
 }
 
 impl ScratchSet for ScratchBvh<'_> {
-    fn for_each_near<F: FnMut(Scratch)>(&self, x0: Vec2, radius: f32, mut visit: F) {
-        let scratches = self.scratches;
-        let _ = for_each_near_point(self.nodes, [x0.x, x0.y, 0.0], radius, |slot| {
-            if let Some(s) = scratches.get(slot as usize)
-                && s.distance_to(x0) <= radius
-            {
-                visit(*s);
+    fn next_near(&self, cursor: &mut NearCursor, x0: Vec2, radius: f32) -> Option<Scratch> {
+        while let Some(slot) = next_near_point(self.nodes, cursor, [x0.x, x0.y, 0.0], radius) {
+            let i = slot as usize;
+            if i < self.scratches.len() {
+                let s = self.scratches[i];
+                if s.distance_to(x0) <= radius {
+                    return Some(s);
+                }
             }
-            ControlFlow::Continue(())
-        });
+        }
+        None
     }
 }
