@@ -25,18 +25,64 @@ impl TableBackend for Cpu {
     }
 }
 
-/// Every backend available on this machine, with a note for each one that is not.
-pub fn available() -> (Vec<Box<dyn TableBackend>>, Vec<String>) {
-    let list: Vec<Box<dyn TableBackend>> =
-        vec![Box::new(Cpu(Backend::Scalar)), Box::new(Cpu(Backend::Simd))];
-    (list, Vec::new())
+/// The SPIR-V backend: the kernel compiled by rust-gpu, dispatched through Vulkan on the
+/// adapter `SCRATCHWAVE_ADAPTER` selects (default: a discrete GPU, else lavapipe).
+pub struct Spirv(pub scratchwave_spirv::Gpu);
+
+impl TableBackend for Spirv {
+    fn name(&self) -> String {
+        "spirv".into()
+    }
+
+    fn supports(&self, spec: &TableSpec) -> bool {
+        // GHS has no SPIR-V entry point: lavapipe did not finish compiling one (the G1
+        // `const` table and unrolled quadrature) within minutes; see the README.
+        spec.ghs.is_none()
+    }
+
+    fn evaluate(&self, spec: &TableSpec) -> Result<Vec<f32>, String> {
+        if !self.supports(spec) {
+            return Err("model \"ghs\" has no SPIR-V entry point (cpu, simd)".into());
+        }
+        self.0
+            .evaluate_table(&spec.params, &spec.scratches, &spec.queries)
+            .map(|d| d.output)
+            .map_err(|e| e.to_string())
+    }
 }
 
-/// The backend called `name` (`cpu`, `simd`), or an error listing the choices.
+/// Opens the SPIR-V backend, or says why it is unavailable.
+pub fn spirv() -> Result<Spirv, String> {
+    scratchwave_spirv::Gpu::new()
+        .map(Spirv)
+        .map_err(|e| e.to_string())
+}
+
+/// Every backend available on this machine, with a note for each one that is not.
+pub fn available() -> (Vec<Box<dyn TableBackend>>, Vec<String>) {
+    let mut list: Vec<Box<dyn TableBackend>> =
+        vec![Box::new(Cpu(Backend::Scalar)), Box::new(Cpu(Backend::Simd))];
+    let mut notes = Vec::new();
+    match spirv() {
+        Ok(g) => {
+            let a = g.0.adapter();
+            notes.push(format!(
+                "spirv: {} ({:?}, driver {})",
+                a.name, a.kind, a.driver
+            ));
+            list.push(Box::new(g));
+        }
+        Err(e) => notes.push(format!("spirv unavailable: {e}")),
+    }
+    (list, notes)
+}
+
+/// The backend called `name` (`cpu`, `simd`, `spirv`), or an error listing the choices.
 pub fn by_name(name: &str) -> Result<Box<dyn TableBackend>, String> {
     match name {
         "cpu" => Ok(Box::new(Cpu(Backend::Scalar))),
         "simd" => Ok(Box::new(Cpu(Backend::Simd))),
-        other => Err(format!("unknown backend {other:?} (cpu, simd, all)")),
+        "spirv" => Ok(Box::new(spirv()?)),
+        other => Err(format!("unknown backend {other:?} (cpu, simd, spirv, all)")),
     }
 }

@@ -20,6 +20,10 @@ pub const FLOOR: f64 = 1e-6;
 pub trait TableBackend {
     /// Short name (`cpu`, `simd`, `spirv`).
     fn name(&self) -> String;
+    /// Whether this backend evaluates `spec`'s model at all (others are skipped, not failed).
+    fn supports(&self, _spec: &TableSpec) -> bool {
+        true
+    }
     /// One value per query, in order.
     fn evaluate(&self, spec: &TableSpec) -> Result<Vec<f32>, String>;
 }
@@ -232,6 +236,9 @@ pub fn run_case(case: &Case, backends: &[Box<dyn TableBackend>]) -> CaseReport {
     let mut outputs: Vec<(String, Vec<f64>)> = Vec::new();
     let mut errors = Vec::new();
     for b in backends {
+        if !b.supports(&case.spec) {
+            continue;
+        }
         match b.evaluate(&case.spec) {
             Ok(v) => outputs.push((b.name(), v.into_iter().map(f64::from).collect())),
             Err(e) => errors.push((b.name(), e)),

@@ -44,6 +44,7 @@ impl Model {
 
 /// Which angle the Fresnel term is evaluated at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
 pub enum FresnelAngle {
     /// θd: between `wi` and the half vector (default).
     ThetaD = 0,

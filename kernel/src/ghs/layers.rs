@@ -26,6 +26,7 @@ use crate::math;
 
 /// Which form of the layer equations to evaluate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
 pub enum LayerForm {
     /// As printed in the paper.
     Published = 0,

@@ -42,6 +42,7 @@ pub use crate::sampling::ghs::{pdf, sample};
 
 /// Diffraction-lobe colour (`diff_color`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
 pub enum DiffColor {
     /// `Q/2` (equals `F` in the specular direction). Default.
     HalfQ = 0,
@@ -68,6 +69,7 @@ impl DiffColor {
 
 /// Layer under the rough interface (`layer`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
 pub enum Layer {
     /// Single interface (conductors, or a dielectric without a diffuse body).
     None = 0,

@@ -16,6 +16,7 @@ use crate::math::{self, C32};
 
 /// Groove cross-section.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
 pub enum Profile {
     /// Flat-bottomed groove of constant depth.
     Rect = 0,
@@ -38,6 +39,7 @@ impl Profile {
 
 /// How the depth phase depends on the directions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
 pub enum DepthTerm {
     /// `γ = γi + γo` replaced by 2 (normal incidence; Velinov 2018 Eq. 4, Eq. 11).
     SmallAngle = 0,

@@ -13,6 +13,7 @@ use glam::Vec2;
 
 /// Which spatial phase to use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
 pub enum EtaMode {
     /// Finite segment (Werner App. A; Velinov Eq. 5).
     Finite = 0,
