@@ -34,6 +34,7 @@ pub mod scratch_lookup;
 mod segment_bvh;
 pub mod table;
 mod triangle_bvh;
+pub mod vec64;
 
 pub use mesh::MeshError;
 pub use parallel::Backend;

@@ -10,25 +10,7 @@ use scratchwave_kernel::lights::{Cone, LIGHT_POLYGON, LightParams, LightQuery};
 use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 
-type V3 = [f64; 3];
-
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn norm(a: V3) -> V3 {
-    let l = dot(a, a).sqrt();
-    [a[0] / l, a[1] / l, a[2] / l]
-}
+use crate::vec64::{V3, cross, dot, norm, sub};
 
 /// `N`-sample light-sampling estimate (0 for degenerate lights).
 pub fn light_mc(

@@ -31,26 +31,7 @@ pub struct Reference {
     pub evals: u64,
 }
 
-type V3 = [f64; 3];
-
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn norm(a: V3) -> V3 {
-    let l = dot(a, a).sqrt();
-    if l > 0.0 {
-        [a[0] / l, a[1] / l, a[2] / l]
-    } else {
-        [0.0; 3]
-    }
-}
+use crate::vec64::{V3, cross, dot, norm};
 
 /// The light's solid angle in `f64`, with an inside test only.
 #[derive(Clone, Debug)]

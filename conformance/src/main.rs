@@ -81,6 +81,17 @@ fn flag<'a>(flags: &[(&str, &'a str)], name: &str) -> Option<&'a str> {
         .map(|(_, v)| *v)
 }
 
+/// `--backend cpu|simd` for the commands that run on the CPU backends only.
+fn cpu_backend(flags: &[(&str, &str)]) -> Result<Backend, Failure> {
+    match flag(flags, "backend") {
+        None | Some("cpu") => Ok(Backend::Scalar),
+        Some("simd") => Ok(Backend::Simd),
+        Some(other) => Err(Failure::Usage(format!(
+            "unknown backend {other:?} (cpu, simd)"
+        ))),
+    }
+}
+
 fn read_json(path: &str) -> Result<serde_json::Value, SpecError> {
     let text = std::fs::read_to_string(path).map_err(|e| SpecError::Io {
         path: path.into(),
@@ -123,15 +134,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
         "light" => {
             let (pos, flags) = parse_flags(rest, &["backend"])?;
             let file = one_file(&pos, "light")?;
-            let b = match flag(&flags, "backend") {
-                None | Some("cpu") => Backend::Scalar,
-                Some("simd") => Backend::Simd,
-                Some(other) => {
-                    return Err(Failure::Usage(format!(
-                        "unknown backend {other:?} (cpu, simd)"
-                    )));
-                }
-            };
+            let b = cpu_backend(&flags)?;
             let s = scratchwave_conformance::light_spec::light_spec(&read_json(file)?)?;
             print!(
                 "{}",
@@ -142,15 +145,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
         "footprint" => {
             let (pos, flags) = parse_flags(rest, &["backend"])?;
             let file = one_file(&pos, "footprint")?;
-            let b = match flag(&flags, "backend") {
-                None | Some("cpu") => Backend::Scalar,
-                Some("simd") => Backend::Simd,
-                Some(other) => {
-                    return Err(Failure::Usage(format!(
-                        "unknown backend {other:?} (cpu, simd)"
-                    )));
-                }
-            };
+            let b = cpu_backend(&flags)?;
             let s = spec::footprint_spec(&read_json(file)?)?;
             let rows = footprint_table(b, s.sigma_um, &s.queries);
             let mut out = String::from("eq15,eq16,accurate,rho_p\n");
