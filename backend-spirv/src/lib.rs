@@ -29,6 +29,7 @@ pub use dispatch::{Dispatched, Input, Timings};
 pub use error::{Result, SpirvError};
 pub use gpu::{Gpu, SHADER_SPV, entry_points};
 pub use probe::math_probe_cpu;
+/// The CPU backend's footprint row, which the GPU path fills too.
+pub use scratchwave_cpu::FootprintRow;
 pub use scratchwave_spirv_shader::FootprintParams;
 pub use scratchwave_spirv_shader::probe::{MathFunction, ProbeParams};
-pub use table::FootprintRow;

@@ -3,24 +3,14 @@
 use crate::dispatch::{Dispatched, Input, Timings};
 use crate::error::Result;
 use crate::gpu::Gpu;
-use scratchwave_cpu::ScratchLookup;
+use scratchwave_cpu::{FootprintRow, ScratchLookup};
 use scratchwave_kernel::footprint::Ellipse;
+use scratchwave_kernel::ghs::GhsParams;
+use scratchwave_kernel::ghs::g1::G1Table;
+use scratchwave_kernel::lights::{LightParams, LightQuery};
 use scratchwave_kernel::scratch::Scratch;
 use scratchwave_kernel::table::{Model, TableParams, TableQuery};
 use scratchwave_spirv_shader::FootprintParams;
-
-/// One footprint-table row, field for field the CPU backend's `FootprintRow`.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct FootprintRow {
-    /// Velinov Eq. 15.
-    pub eq15: f32,
-    /// Velinov Eq. 16 (π restored).
-    pub eq16: f32,
-    /// Accurate quadrature.
-    pub accurate: f32,
-    /// ρ_P by Velinov Eq. 18 (factor 2 removed).
-    pub rho_p: f32,
-}
 
 /// Selects one field of a [`FootprintRow`].
 type Column = fn(&mut FootprintRow) -> &mut f32;
@@ -62,6 +52,38 @@ impl Gpu {
             Input::per_item(queries),
         ];
         self.dispatch(entry, &inputs, queries.len())
+    }
+
+    /// Evaluates a GHS table: `kernel::table::evaluate_ghs_with_g1_table` per query, with
+    /// the G1 table uploaded as a buffer.
+    pub fn evaluate_ghs_table(
+        &self,
+        params: &GhsParams,
+        queries: &[TableQuery],
+    ) -> Result<Dispatched<f32>> {
+        let inputs = [
+            Input::whole(std::slice::from_ref(params)),
+            Input::whole(G1Table::FLAT),
+            Input::per_item(queries),
+        ];
+        self.dispatch("table_ghs", &inputs, queries.len())
+    }
+
+    /// Evaluates area-light queries: `kernel::lights::light_integral` per query over the
+    /// BVH lookup of `lookup` (build it with the light's σ).
+    pub fn light_table(
+        &self,
+        params: &LightParams,
+        lookup: &ScratchLookup,
+        queries: &[LightQuery],
+    ) -> Result<Dispatched<f32>> {
+        let inputs = [
+            Input::whole(std::slice::from_ref(params)),
+            Input::whole(lookup.nodes()),
+            Input::whole(lookup.scratches()),
+            Input::per_item(queries),
+        ];
+        self.dispatch("light", &inputs, queries.len())
     }
 
     /// Evaluates footprint queries `(scratch, ellipse)`: one dispatch per average.

@@ -177,3 +177,43 @@ fn bad_requests_are_typed_errors() {
     let odd = gpu.dispatch::<[u16; 1]>("math_probe", &[], 4);
     assert!(matches!(odd, Err(SpirvError::BadOutput { .. })), "{odd:?}");
 }
+
+#[test]
+fn inverse_trig_agrees_to_2_ulp_and_ln_within_vulkan_precision() {
+    let Some(gpu) = lavapipe() else { return };
+    // The kernel's own atan2/atan/asin/acos (GLSL's are off by up to 3.9e-4 on lavapipe):
+    // only + − × ÷ and sqrt, so the two sides differ by contraction at most.
+    let circle = (0..100_003)
+        .map(|i| {
+            let a = (i as f32 / 100_003.0 - 0.5) * std::f32::consts::TAU;
+            [3.0 * a.sin(), 3.0 * a.cos()]
+        })
+        .collect();
+    for (function, args) in [
+        (MathFunction::Acos, linspace(-1.0, 1.0, 100_003)),
+        (MathFunction::Asin, linspace(-1.0, 1.0, 100_003)),
+        (MathFunction::Atan, linspace(-50.0, 50.0, 100_003)),
+        (MathFunction::Atan2, circle),
+    ] {
+        let (args, cpu, gpu_out) = both(&gpu, function, args);
+        for ((arg, c), g) in args.iter().zip(&cpu).zip(&gpu_out) {
+            assert!(
+                ulps(c[0], g[0]) <= 2,
+                "{function:?}({arg:?}): cpu {} lavapipe {}",
+                c[0],
+                g[0]
+            );
+        }
+    }
+    // GLSL `Log`: 3 ULP outside [0.5, 2], 2⁻²¹ absolute inside; plus libm's 1 ULP.
+    let (args, cpu, gpu_out) = both(&gpu, MathFunction::Ln, linspace(1.0e-3, 1.0e3, 100_003));
+    for ((arg, c), g) in args.iter().zip(&cpu).zip(&gpu_out) {
+        assert!(
+            ulps(c[0], g[0]) <= 4 || (c[0] - g[0]).abs() <= 2.0f32.powi(-21),
+            "ln({}): cpu {} lavapipe {}",
+            arg[0],
+            c[0],
+            g[0]
+        );
+    }
+}

@@ -9,8 +9,11 @@
 
 mod common;
 
+use scratchwave_cpu::table::evaluate_ghs_table;
 use scratchwave_cpu::{Backend, evaluate_table, footprint_table};
 use scratchwave_kernel::footprint::Ellipse;
+use scratchwave_kernel::ghs::layers::LayerForm;
+use scratchwave_kernel::ghs::{DiffColor, GhsParams, Layer, presets};
 use scratchwave_kernel::scratch::{Profile, Scratch};
 use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery};
 
@@ -164,16 +167,15 @@ fn footprint_tables_agree_with_the_cpu_backend() {
     let cpu = footprint_table(Backend::Scalar, sigma, &pairs);
     let gpu_rows = gpu.footprint_table(sigma, &pairs).unwrap().output;
     type Column = fn(&scratchwave_cpu::FootprintRow) -> f32;
-    type GpuColumn = fn(&scratchwave_spirv::FootprintRow) -> f32;
-    let columns: [(&str, Column, GpuColumn); 4] = [
-        ("eq15", |r| r.eq15, |r| r.eq15),
-        ("eq16", |r| r.eq16, |r| r.eq16),
-        ("accurate", |r| r.accurate, |r| r.accurate),
-        ("rho_p", |r| r.rho_p, |r| r.rho_p),
+    let columns: [(&str, Column); 4] = [
+        ("eq15", |r| r.eq15),
+        ("eq16", |r| r.eq16),
+        ("accurate", |r| r.accurate),
+        ("rho_p", |r| r.rho_p),
     ];
-    for (name, cpu_col, gpu_col) in columns {
-        let c: Vec<f32> = cpu.iter().map(cpu_col).collect();
-        let g: Vec<f32> = gpu_rows.iter().map(gpu_col).collect();
+    for (name, column) in columns {
+        let c: Vec<f32> = cpu.iter().map(column).collect();
+        let g: Vec<f32> = gpu_rows.iter().map(column).collect();
         let (rel, at) = max_rel_diff(&c, &g);
         eprintln!("footprint {name}: max rel diff {rel:.2e}");
         assert!(
@@ -181,6 +183,43 @@ fn footprint_tables_agree_with_the_cpu_backend() {
             "{name}: rel diff {rel:e} at {at}: cpu {} gpu {}",
             c[at],
             g[at]
+        );
+    }
+}
+
+#[test]
+fn ghs_tables_agree_with_the_cpu_backend() {
+    let Some(gpu) = common::lavapipe() else {
+        return;
+    };
+    let queries = queries();
+    let gold = presets::channel(presets::ROUGH_METAL, &presets::GOLD, 1);
+    let materials = [
+        gold,
+        presets::channel(presets::POLISHED_METAL, &presets::GOLD, 0).with_diff_color(DiffColor::Q),
+        presets::GLOSSY_PLASTIC.with_diff_color(DiffColor::Fresnel),
+        presets::TRANSLUCENT_STONE.with_diff_color(DiffColor::None),
+        GhsParams::new(0.1, 0.3, 0.2, 0.05, 1.05, 1.5, 0.0).with_layer(
+            Layer::Plastic,
+            LayerForm::EnergyConserving,
+            0.5,
+        ),
+    ];
+    for params in materials {
+        let cpu = evaluate_ghs_table(Backend::Scalar, &params, &queries);
+        let gpu_out = gpu.evaluate_ghs_table(&params, &queries).unwrap().output;
+        assert_eq!(gpu_out.len(), cpu.len());
+        assert!(
+            cpu.iter().any(|&v| v > 0.0),
+            "an all-zero case tests nothing"
+        );
+        let (rel, at) = max_rel_diff(&cpu, &gpu_out);
+        eprintln!("ghs {params:?}: max rel diff {rel:.2e}");
+        assert!(
+            rel <= REL_TOL,
+            "ghs {params:?}: rel diff {rel:e} at query {at}: cpu {} gpu {}",
+            cpu[at],
+            gpu_out[at]
         );
     }
 }

@@ -1,9 +1,14 @@
 //! The backends the CLI and the conformance run can use.
 
+use crate::light_case::LightBatch;
 use crate::run::TableBackend;
 use crate::spec::TableSpec;
+use scratchwave_cpu::parallel::map;
 use scratchwave_cpu::table::evaluate_ghs_table;
-use scratchwave_cpu::{Backend, evaluate_table};
+use scratchwave_cpu::{Backend, FootprintRow, ScratchLookup, evaluate_table, footprint_table};
+use scratchwave_kernel::footprint::Ellipse;
+use scratchwave_kernel::lights::light_integral;
+use scratchwave_kernel::scratch::Scratch;
 
 /// A CPU path (`cpu` = scalar, `simd` = rayon + SIMD code generation).
 pub struct Cpu(pub Backend);
@@ -23,6 +28,22 @@ impl TableBackend for Cpu {
             None => evaluate_table(self.0, &spec.params, &spec.scratches, &spec.queries),
         })
     }
+
+    fn evaluate_light(&self, batch: &LightBatch) -> Result<Vec<f32>, String> {
+        let lookup = ScratchLookup::new(&batch.scratches, batch.params.sigma_um);
+        let set = lookup.set();
+        Ok(map(self.0, &batch.queries, |q| {
+            light_integral(&batch.params, q, &set)
+        }))
+    }
+
+    fn evaluate_footprint(
+        &self,
+        sigma: f32,
+        queries: &[(Scratch, Ellipse)],
+    ) -> Result<Vec<FootprintRow>, String> {
+        Ok(footprint_table(self.0, sigma, queries))
+    }
 }
 
 /// The SPIR-V backend: the kernel compiled by rust-gpu, dispatched through Vulkan on the
@@ -34,18 +55,32 @@ impl TableBackend for Spirv {
         "spirv".into()
     }
 
-    fn supports(&self, spec: &TableSpec) -> bool {
-        // GHS has no SPIR-V entry point: lavapipe did not finish compiling one (the G1
-        // `const` table and unrolled quadrature) within minutes; see the README.
-        spec.ghs.is_none()
+    fn evaluate(&self, spec: &TableSpec) -> Result<Vec<f32>, String> {
+        match &spec.ghs {
+            Some(g) => self.0.evaluate_ghs_table(g, &spec.queries),
+            None => self
+                .0
+                .evaluate_table(&spec.params, &spec.scratches, &spec.queries),
+        }
+        .map(|d| d.output)
+        .map_err(|e| e.to_string())
     }
 
-    fn evaluate(&self, spec: &TableSpec) -> Result<Vec<f32>, String> {
-        if !self.supports(spec) {
-            return Err("model \"ghs\" has no SPIR-V entry point (cpu, simd)".into());
-        }
+    fn evaluate_light(&self, batch: &LightBatch) -> Result<Vec<f32>, String> {
+        let lookup = ScratchLookup::new(&batch.scratches, batch.params.sigma_um);
         self.0
-            .evaluate_table(&spec.params, &spec.scratches, &spec.queries)
+            .light_table(&batch.params, &lookup, &batch.queries)
+            .map(|d| d.output)
+            .map_err(|e| e.to_string())
+    }
+
+    fn evaluate_footprint(
+        &self,
+        sigma: f32,
+        queries: &[(Scratch, Ellipse)],
+    ) -> Result<Vec<FootprintRow>, String> {
+        self.0
+            .footprint_table(sigma, queries)
             .map(|d| d.output)
             .map_err(|e| e.to_string())
     }
@@ -83,6 +118,6 @@ pub fn by_name(name: &str) -> Result<Box<dyn TableBackend>, String> {
         "cpu" => Ok(Box::new(Cpu(Backend::Scalar))),
         "simd" => Ok(Box::new(Cpu(Backend::Simd))),
         "spirv" => Ok(Box::new(spirv()?)),
-        other => Err(format!("unknown backend {other:?} (cpu, simd, spirv, all)")),
+        other => Err(format!("unknown backend {other:?} (cpu, simd, spirv)")),
     }
 }

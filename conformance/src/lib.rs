@@ -10,6 +10,7 @@ pub mod error;
 pub mod format;
 pub mod generate;
 pub mod json;
+pub mod light_case;
 pub mod light_spec;
 pub mod run;
 pub mod spec;

@@ -20,17 +20,18 @@
 //! (exact for polygons star-shaped about it). Columns: the closed form with the exact Si,
 //! with Eq. 29's Si, the adaptive-quadrature reference and its error estimate.
 
+use crate::backends::Cpu;
 use crate::error::SpecError;
 use crate::format::g9;
 use crate::json::{self, Obj};
+use crate::light_case::LightBatch;
+use crate::run::TableBackend;
 use crate::spec::table_spec;
 use scratchwave_cpu::Backend;
 use scratchwave_cpu::light_reference::light_reference;
 use scratchwave_cpu::parallel::map;
-use scratchwave_kernel::lights::{
-    Cone, Light, LightParams, LightQuery, MAX_VERTICES, SiMode, light_integral,
-};
-use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
+use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, MAX_VERTICES, SiMode};
+use scratchwave_kernel::scratch::Scratch;
 use serde_json::{Value, json};
 
 /// A parsed light spec.
@@ -206,45 +207,54 @@ fn light(v: &Value, path: &str) -> Result<Vec<Light>, SpecError> {
 /// One CSV row: `(closed exact Si, closed Eq. 29 Si, reference, reference error)`.
 pub type LightRow = (f32, f32, f64, f64);
 
-/// Evaluates every query (closed forms on `backend`; the reference on the CPU, in parallel).
-pub fn light_rows(spec: &LightSpec, backend: Backend) -> Vec<LightRow> {
-    let set = ScratchSlice {
-        scratches: std::slice::from_ref(&spec.scratch),
-    };
-    let closed = |si: SiMode| {
-        let p = LightParams {
-            si_mode: si as u32,
-            ..spec.params
+/// Evaluates every query: the closed forms on `backend` (any [`TableBackend`], the GPU
+/// included), the reference on the CPU, in parallel. A backend failure is returned as its
+/// message.
+pub fn light_rows(spec: &LightSpec, backend: &dyn TableBackend) -> Result<Vec<LightRow>, String> {
+    // Flatten the fans into one batch; `owner[i]` is the spec query of batch query `i`.
+    let (owner, flat): (Vec<usize>, Vec<LightQuery>) = spec
+        .queries
+        .iter()
+        .enumerate()
+        .flat_map(|(i, parts)| parts.iter().map(move |q| (i, *q)))
+        .unzip();
+    let closed = |si: SiMode| -> Result<Vec<f32>, String> {
+        let batch = LightBatch {
+            params: LightParams {
+                si_mode: si as u32,
+                ..spec.params
+            },
+            scratches: vec![spec.scratch],
+            queries: flat.clone(),
         };
-        map(backend, &spec.queries, |parts: &Vec<LightQuery>| {
-            parts
-                .iter()
-                .map(|q| light_integral(&p, q, &set))
-                .sum::<f32>()
-        })
+        let mut sums = vec![0.0f32; spec.queries.len()];
+        for (i, v) in owner.iter().zip(backend.evaluate_light(&batch)?) {
+            sums[*i] += v;
+        }
+        Ok(sums)
     };
-    let (exact, approx) = (closed(SiMode::Exact), closed(SiMode::Velinov));
+    let (exact, approx) = (closed(SiMode::Exact)?, closed(SiMode::Velinov)?);
     let reference = map(Backend::Simd, &spec.queries, |parts: &Vec<LightQuery>| {
         parts.iter().fold((0.0, 0.0), |(v, e), q| {
             let r = light_reference(&spec.params, q, &spec.scratch, spec.reference_rel_tol);
             (v + r.value, e + r.err)
         })
     });
-    (0..spec.queries.len())
+    Ok((0..spec.queries.len())
         .map(|i| (exact[i], approx[i], reference[i].0, reference[i].1))
-        .collect()
+        .collect())
 }
 
 /// The CSV `closed_exact_si,closed_approx_si,reference,reference_err` (header + one line per
 /// query), `%.9g`.
 pub fn light_csv(spec: &LightSpec) -> String {
-    light_csv_on(spec, Backend::Scalar)
+    light_csv_on(spec, &Cpu(Backend::Scalar)).unwrap_or_default()
 }
 
 /// [`light_csv`] with the closed forms on `backend`.
-pub fn light_csv_on(spec: &LightSpec, backend: Backend) -> String {
+pub fn light_csv_on(spec: &LightSpec, backend: &dyn TableBackend) -> Result<String, String> {
     let mut out = String::from("closed_exact_si,closed_approx_si,reference,reference_err\n");
-    for (a, b, r, e) in light_rows(spec, backend) {
+    for (a, b, r, e) in light_rows(spec, backend)? {
         out += &format!(
             "{},{},{},{}\n",
             g9(f64::from(a)),
@@ -253,5 +263,5 @@ pub fn light_csv_on(spec: &LightSpec, backend: Backend) -> String {
             g9(e)
         );
     }
-    out
+    Ok(out)
 }

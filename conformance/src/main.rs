@@ -6,15 +6,14 @@
 use scratchwave_conformance::error::SpecError;
 use scratchwave_conformance::format::g9;
 use scratchwave_conformance::{backends, json, run, spec};
-use scratchwave_cpu::{Backend, footprint_table};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const USAGE: &str = "usage:
   scratchwave run [--cases DIR] [--out DIR]      conformance run over the committed cases
   scratchwave table SPEC.json [--backend cpu|simd|all]
-  scratchwave footprint SPEC.json [--backend cpu|simd]
-  scratchwave light SPEC.json [--backend cpu|simd]";
+  scratchwave footprint SPEC.json [--backend cpu|simd|spirv]
+  scratchwave light SPEC.json [--backend cpu|simd|spirv]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -82,16 +81,6 @@ fn flag<'a>(flags: &[(&str, &'a str)], name: &str) -> Option<&'a str> {
 }
 
 /// `--backend cpu|simd` for the commands that run on the CPU backends only.
-fn cpu_backend(flags: &[(&str, &str)]) -> Result<Backend, Failure> {
-    match flag(flags, "backend") {
-        None | Some("cpu") => Ok(Backend::Scalar),
-        Some("simd") => Ok(Backend::Simd),
-        Some(other) => Err(Failure::Usage(format!(
-            "unknown backend {other:?} (cpu, simd)"
-        ))),
-    }
-}
-
 fn read_json(path: &str) -> Result<serde_json::Value, SpecError> {
     let text = std::fs::read_to_string(path).map_err(|e| SpecError::Io {
         path: path.into(),
@@ -134,20 +123,23 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
         "light" => {
             let (pos, flags) = parse_flags(rest, &["backend"])?;
             let file = one_file(&pos, "light")?;
-            let b = cpu_backend(&flags)?;
+            let which = flag(&flags, "backend").unwrap_or("cpu");
             let s = scratchwave_conformance::light_spec::light_spec(&read_json(file)?)?;
-            print!(
-                "{}",
-                scratchwave_conformance::light_spec::light_csv_on(&s, b)
-            );
+            let b = backends::by_name(which).map_err(Failure::Usage)?;
+            let csv = scratchwave_conformance::light_spec::light_csv_on(&s, b.as_ref())
+                .map_err(Failure::Backend)?;
+            print!("{csv}");
             Ok(ExitCode::SUCCESS)
         }
         "footprint" => {
             let (pos, flags) = parse_flags(rest, &["backend"])?;
             let file = one_file(&pos, "footprint")?;
-            let b = cpu_backend(&flags)?;
+            let which = flag(&flags, "backend").unwrap_or("cpu");
             let s = spec::footprint_spec(&read_json(file)?)?;
-            let rows = footprint_table(b, s.sigma_um, &s.queries);
+            let b = backends::by_name(which).map_err(Failure::Usage)?;
+            let rows = b
+                .evaluate_footprint(s.sigma_um, &s.queries)
+                .map_err(Failure::Backend)?;
             let mut out = String::from("eq15,eq16,accurate,rho_p\n");
             for r in rows {
                 let f = |v: f32| g9(f64::from(v));
@@ -202,7 +194,7 @@ fn table_all(s: &spec::TableSpec) -> Result<ExitCode, Failure> {
     let case = run::Case {
         name: "spec".into(),
         description: String::new(),
-        spec: s.clone(),
+        spec: run::CaseSpec::Table(s.clone()),
         expected: None,
         rel_tol: run::DEFAULT_REL_TOL,
         why: String::new(),
@@ -238,7 +230,7 @@ fn conformance_run(dirs: &[PathBuf], out_dir: &Path) -> Result<ExitCode, Failure
             i + 1,
             cases.len(),
             c.name,
-            c.spec.queries.len(),
+            c.spec.len(),
             c.description
         );
         reports.push(run::run_case(c, &list));

@@ -5,7 +5,11 @@ use crate::error::SpecError;
 use crate::format::g;
 use crate::generate::random_spec;
 use crate::json;
+use crate::light_case::{LightBatch, random_light_batch};
 use crate::spec::{TableSpec, table_spec};
+use scratchwave_cpu::FootprintRow;
+use scratchwave_kernel::footprint::Ellipse;
+use scratchwave_kernel::scratch::Scratch;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
@@ -16,16 +20,51 @@ pub const DEFAULT_REL_TOL: f64 = 1e-4;
 /// to the maximum.
 pub const FLOOR: f64 = 1e-6;
 
-/// A backend that evaluates table specs.
+/// A backend that evaluates table specs and light batches.
 pub trait TableBackend {
     /// Short name (`cpu`, `simd`, `spirv`).
     fn name(&self) -> String;
-    /// Whether this backend evaluates `spec`'s model at all (others are skipped, not failed).
-    fn supports(&self, _spec: &TableSpec) -> bool {
-        true
-    }
     /// One value per query, in order.
     fn evaluate(&self, spec: &TableSpec) -> Result<Vec<f32>, String>;
+    /// One light integral per query, in order.
+    fn evaluate_light(&self, batch: &LightBatch) -> Result<Vec<f32>, String>;
+    /// One footprint row per `(scratch, ellipse)` query, in order.
+    fn evaluate_footprint(
+        &self,
+        sigma: f32,
+        queries: &[(Scratch, Ellipse)],
+    ) -> Result<Vec<FootprintRow>, String>;
+    /// One value per query of a case's spec, whichever kind it is.
+    fn evaluate_case(&self, spec: &CaseSpec) -> Result<Vec<f32>, String> {
+        match spec {
+            CaseSpec::Table(t) => self.evaluate(t),
+            CaseSpec::Light(l) => self.evaluate_light(l),
+        }
+    }
+}
+
+/// What a case evaluates: a BRDF table or a batch of light integrals.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CaseSpec {
+    /// `scratchwave table` queries.
+    Table(TableSpec),
+    /// Area-light queries ([`crate::light_case`]).
+    Light(LightBatch),
+}
+
+impl CaseSpec {
+    /// Number of queries.
+    pub fn len(&self) -> usize {
+        match self {
+            CaseSpec::Table(t) => t.queries.len(),
+            CaseSpec::Light(l) => l.queries.len(),
+        }
+    }
+
+    /// Whether there are no queries.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
 }
 
 /// A committed case: a table spec (given or generated), optional reference values and the
@@ -36,7 +75,7 @@ pub struct Case {
     /// What the case exercises.
     pub description: String,
     /// The expanded spec.
-    pub spec: TableSpec,
+    pub spec: CaseSpec,
     /// Reference values (mpmath), one per query, if the case has them.
     pub expected: Option<Vec<f64>>,
     /// Relative tolerance above the floor.
@@ -121,8 +160,8 @@ pub fn load_cases(dirs: &[PathBuf]) -> Result<Vec<Case>, SpecError> {
     Ok(cases)
 }
 
-/// Loads one case file: `{"description", "tolerance": {"rel", "why"}?, "spec" | "random",
-/// "expected"?}`.
+/// Loads one case file: `{"description", "tolerance": {"rel", "why"}?, "spec" | "random" |
+/// "random_lights", "expected"?}`.
 pub fn load_case(f: &Path) -> Result<Case, SpecError> {
     let name = f
         .file_name()
@@ -139,17 +178,23 @@ pub fn load_case(f: &Path) -> Result<Case, SpecError> {
             "tolerance",
             "spec",
             "random",
+            "random_lights",
             "expected",
             "expected_log10",
         ],
     )?;
-    let spec = match (o.get("spec"), o.get("random")) {
-        (Some(s), None) => table_spec(s).map_err(|e| prefix(e, &o.path_of("spec")))?,
-        (None, Some(r)) => random_spec(r, &o.path_of("random"))?,
+    let spec = match (o.get("spec"), o.get("random"), o.get("random_lights")) {
+        (Some(s), None, None) => {
+            CaseSpec::Table(table_spec(s).map_err(|e| prefix(e, &o.path_of("spec")))?)
+        }
+        (None, Some(r), None) => CaseSpec::Table(random_spec(r, &o.path_of("random"))?),
+        (None, None, Some(r)) => {
+            CaseSpec::Light(random_light_batch(r, &o.path_of("random_lights"))?)
+        }
         _ => {
             return Err(SpecError::field(
                 name,
-                "needs exactly one of \"spec\" and \"random\"",
+                "needs exactly one of \"spec\", \"random\" and \"random_lights\"",
             ));
         }
     };
@@ -164,10 +209,10 @@ pub fn load_case(f: &Path) -> Result<Case, SpecError> {
                 .enumerate()
                 .map(|(i, x)| json::number(x, &format!("{}[{i}]", o.path_of("expected"))))
                 .collect::<Result<Vec<_>, _>>()?;
-            if vals.len() != spec.queries.len() {
+            if vals.len() != spec.len() {
                 return Err(SpecError::field(
                     o.path_of("expected"),
-                    format!("{} values for {} queries", vals.len(), spec.queries.len()),
+                    format!("{} values for {} queries", vals.len(), spec.len()),
                 ));
             }
             Some(vals)
@@ -236,10 +281,7 @@ pub fn run_case(case: &Case, backends: &[Box<dyn TableBackend>]) -> CaseReport {
     let mut outputs: Vec<(String, Vec<f64>)> = Vec::new();
     let mut errors = Vec::new();
     for b in backends {
-        if !b.supports(&case.spec) {
-            continue;
-        }
-        match b.evaluate(&case.spec) {
+        match b.evaluate_case(&case.spec) {
             Ok(v) => outputs.push((b.name(), v.into_iter().map(f64::from).collect())),
             Err(e) => errors.push((b.name(), e)),
         }
@@ -271,7 +313,7 @@ pub fn run_case(case: &Case, backends: &[Box<dyn TableBackend>]) -> CaseReport {
     }
     CaseReport {
         name: case.name.clone(),
-        queries: case.spec.queries.len(),
+        queries: case.spec.len(),
         rows,
         errors,
     }

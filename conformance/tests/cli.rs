@@ -325,3 +325,41 @@ fn ghs_table_runs_and_rejects_misplaced_fields() {
         "queries[0].material",
     );
 }
+
+/// `light` and `footprint` on `--backend spirv` print what `--backend cpu` prints, within the
+/// conformance tolerance (skipped, with the reason, where the machine has no Vulkan).
+#[test]
+fn light_and_footprint_run_on_spirv_like_cpu() {
+    let light = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/examples/light.json"),
+    )
+    .unwrap();
+    let footprint = r#"{"sigma_um": 10, "scratches": [{"p0": [-100, 0], "p1": [100, 0], "width": 1, "depth": 0.2}],
+      "queries": [{"scratch": 0, "ellipse": {"center": [0, 3], "angle_rad": 0.3, "a1": 40, "a2": 20}},
+                  {"scratch": 0, "ellipse": {"center": [5, -2], "angle_rad": 1.1, "a1": 4, "a2": 1}}]}"#;
+    for (cmd, spec) in [("light", light.as_str()), ("footprint", footprint)] {
+        let gpu = run(&[cmd, "SPEC", "--backend", "spirv"], spec);
+        if !gpu.status.success() {
+            let err = String::from_utf8_lossy(&gpu.stderr);
+            assert!(err.contains("Vulkan"), "{cmd} on spirv: {err}");
+            eprintln!("skipped: {err}");
+            return;
+        }
+        let cpu = run(&[cmd, "SPEC", "--backend", "cpu"], spec);
+        let (c, g) = (
+            String::from_utf8(cpu.stdout).unwrap(),
+            String::from_utf8(gpu.stdout).unwrap(),
+        );
+        assert_eq!(c.lines().count(), g.lines().count());
+        assert_eq!(c.lines().next(), g.lines().next(), "same header");
+        for (lc, lg) in c.lines().zip(g.lines()).skip(1) {
+            for (a, b) in lc.split(',').zip(lg.split(',')) {
+                let (a, b): (f64, f64) = (a.parse().unwrap(), b.parse().unwrap());
+                assert!(
+                    (a - b).abs() <= 1e-4 * a.abs().max(1e-30),
+                    "{cmd}: cpu {lc} vs spirv {lg}"
+                );
+            }
+        }
+    }
+}

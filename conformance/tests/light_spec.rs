@@ -4,6 +4,7 @@
 //! the 3-band Gauss–Hermite rule.
 
 use scratchwave_conformance::SpecError;
+use scratchwave_conformance::backends::Cpu;
 use scratchwave_conformance::light_spec::{light_csv, light_rows, light_spec};
 use scratchwave_cpu::Backend;
 use serde_json::json;
@@ -23,7 +24,7 @@ fn example() -> serde_json::Value {
 #[test]
 fn example_closed_forms_agree_with_the_reference() {
     let spec = light_spec(&example()).expect("valid spec");
-    let rows = light_rows(&spec, Backend::Scalar);
+    let rows = light_rows(&spec, &Cpu(Backend::Scalar)).unwrap();
     assert_eq!(rows.len(), 5);
     for (i, (exact, approx, reference, err)) in rows.iter().enumerate() {
         println!("{i}: exact {exact:.6e} eq29 {approx:.6e} ref {reference:.6e} ± {err:.1e}");
@@ -42,7 +43,11 @@ fn example_closed_forms_agree_with_the_reference() {
     }
     let mut spec3 = spec.clone();
     spec3.params.bands = 3;
-    for (i, (exact, _, reference, _)) in light_rows(&spec3, Backend::Scalar).iter().enumerate() {
+    for (i, (exact, _, reference, _)) in light_rows(&spec3, &Cpu(Backend::Scalar))
+        .unwrap()
+        .iter()
+        .enumerate()
+    {
         assert!(
             (f64::from(*exact) / reference - 1.0).abs() < 0.01,
             "3 bands, query {i}"
@@ -69,7 +74,7 @@ fn large_polygons_are_split_into_fans() {
     ]);
     let spec = light_spec(&v).expect("valid");
     assert_eq!(spec.queries[0].len(), n);
-    let (exact, _, reference, _) = light_rows(&spec, Backend::Scalar)[0];
+    let (exact, _, reference, _) = light_rows(&spec, &Cpu(Backend::Scalar)).unwrap()[0];
     assert!(
         (f64::from(exact) / reference - 1.0).abs() < 0.01,
         "{exact} vs {reference}"

@@ -8,6 +8,7 @@
 //! * `velinov`: `F/(A_C λ²) [Σ|S_k|² + (1 − ρc)|B|²·[base = gaussian]]` (Velinov Eqs. 6–7).
 
 use crate::fresnel::fresnel;
+use crate::ghs::g1::G1Table;
 use crate::ghs::{self, GhsParams};
 use crate::math;
 use crate::scratch::{
@@ -234,11 +235,16 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
 /// wavelength through [`ghs::evaluate`]; the query's shading point and material are not used
 /// (the material is `p`). Below the horizon, 0.
 pub fn evaluate_ghs(p: &GhsParams, q: &TableQuery) -> f32 {
+    evaluate_ghs_with_g1_table(p, G1Table::BUILTIN, q)
+}
+
+/// [`evaluate_ghs`] reading G1 from `g1_table` (the GPU entry point's storage buffer).
+pub fn evaluate_ghs_with_g1_table(p: &GhsParams, g1_table: G1Table, q: &TableQuery) -> f32 {
     let wi = direction(q.wi);
     let wo = direction(q.wo);
     if !(wi.z > 0.0 && wo.z > 0.0 && q.lambda_nm > 0.0) {
         return 0.0;
     }
-    let r = ghs::evaluate(p, wi, wo, q.lambda_nm * 1.0e-3);
+    let r = ghs::evaluate_with_g1_table(p, g1_table, wi, wo, q.lambda_nm * 1.0e-3);
     if r.is_finite() && r > 0.0 { r } else { 0.0 }
 }

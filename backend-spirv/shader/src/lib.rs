@@ -20,6 +20,9 @@ pub mod probe;
 use bytemuck::{Pod, Zeroable};
 use scratchwave_kernel::bvh::BvhNode;
 use scratchwave_kernel::footprint::{self, Ellipse};
+use scratchwave_kernel::ghs::GhsParams;
+use scratchwave_kernel::ghs::g1::G1Table;
+use scratchwave_kernel::lights::{LightParams, LightQuery, light_integral};
 use scratchwave_kernel::scratch::{Scratch, ScratchBvh};
 use scratchwave_kernel::table::{self, Model, TableParams, TableQuery};
 use spirv_std::glam::UVec3;
@@ -108,6 +111,40 @@ pub fn table_velinov(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] out: &mut [f32],
 ) {
     table_entry(VELINOV, id, params, nodes, scratches, queries, out);
+}
+
+/// GHS table (Holzschuch & Pacanowski): [`table::evaluate_ghs_with_g1_table`], reading the
+/// Smith G1 table from a buffer (the host uploads [`G1Table::FLAT`]).
+#[spirv(compute(threads(64)))]
+pub fn table_ghs(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[GhsParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] g1: &[f32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] queries: &[TableQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] out: &mut [f32],
+) {
+    let i = id.x as usize;
+    if i < out.len() {
+        out[i] = table::evaluate_ghs_with_g1_table(&params[0], G1Table::from_flat(g1), &queries[i]);
+    }
+}
+
+/// Area light (Velinov §3.4): [`light_integral`], `∫ f_r cos θi dωi` over each query's
+/// sphere or polygon light, summed over the scratches near the shading point (the same BVH
+/// buffers as the table entry points).
+#[spirv(compute(threads(64)))]
+pub fn light(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] params: &[LightParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] queries: &[LightQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] out: &mut [f32],
+) {
+    let i = id.x as usize;
+    if i < out.len() {
+        out[i] = light_integral(&params[0], &queries[i], &ScratchBvh { nodes, scratches });
+    }
 }
 
 /// Parameters of the footprint entry points.

@@ -55,11 +55,21 @@ pub enum MathFunction {
     PortableSin = 9,
     /// [`math::portable::cos`].
     PortableCos = 10,
+    /// [`math::acos`].
+    Acos = 11,
+    /// [`math::asin`].
+    Asin = 12,
+    /// [`math::atan`].
+    Atan = 13,
+    /// [`math::atan2`]`(arg[0], arg[1])`.
+    Atan2 = 14,
+    /// [`math::ln`].
+    Ln = 15,
 }
 
 impl MathFunction {
     /// Every function, in id order.
-    pub const ALL: [Self; 11] = [
+    pub const ALL: [Self; 16] = [
         Self::Exp,
         Self::Sin,
         Self::Cos,
@@ -71,6 +81,11 @@ impl MathFunction {
         Self::PortableExp,
         Self::PortableSin,
         Self::PortableCos,
+        Self::Acos,
+        Self::Asin,
+        Self::Atan,
+        Self::Atan2,
+        Self::Ln,
     ];
 
     /// The function with this id, if any.
@@ -88,6 +103,11 @@ impl MathFunction {
             8 => Some(Self::PortableExp),
             9 => Some(Self::PortableSin),
             10 => Some(Self::PortableCos),
+            11 => Some(Self::Acos),
+            12 => Some(Self::Asin),
+            13 => Some(Self::Atan),
+            14 => Some(Self::Atan2),
+            15 => Some(Self::Ln),
             _ => None,
         }
     }
@@ -112,6 +132,11 @@ impl MathFunction {
             Self::PortableExp => real(math::portable::exp(x)),
             Self::PortableSin => real(math::portable::sin(x)),
             Self::PortableCos => real(math::portable::cos(x)),
+            Self::Acos => real(math::acos(x)),
+            Self::Asin => real(math::asin(x)),
+            Self::Atan => real(math::atan(x)),
+            Self::Atan2 => real(math::atan2(arg[0], arg[1])),
+            Self::Ln => real(math::ln(x)),
         }
     }
 }

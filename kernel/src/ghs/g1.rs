@@ -11,6 +11,12 @@
 //! ends. 4-point Lagrange interpolation in `ln v` and `ln p`; the generator measured a
 //! maximum relative interpolation error of 1.5e-5 (see the table's header). Outside the
 //! table: `G1 = 1` below `v_min` (Λ < 3e-13 there) and `G1 = 1/(v + ½)` above `v_max`.
+//!
+//! The table is read through a [`G1Table`] view: on the CPU it borrows the `const` table
+//! ([`G1Table::BUILTIN`]); a GPU entry point binds the same numbers as a storage buffer
+//! ([`G1Table::FLAT`] is what the host uploads). A 25 kB `const` array indexed at run time
+//! would become a per-invocation private array on SPIR-V, which lavapipe cannot compile in
+//! reasonable time.
 
 use super::tables::g1_table::{G1_LNP_MAX, G1_LNP_MIN, G1_LNV_MAX, G1_LNV_MIN, G1_NP, G1_NV, G1_Q};
 use crate::math;
@@ -19,6 +25,39 @@ use crate::math;
 pub const P_MIN: f32 = 0.1;
 /// Largest supported `p` (the table's last row; larger values are clamped).
 pub const P_MAX: f32 = 4.0;
+
+/// Read-only view of the G1 table: `q[row · G1_NV + col]`, `G1_NP` rows of `G1_NV` columns.
+#[derive(Clone, Copy, Debug)]
+pub struct G1Table<'a> {
+    q: &'a [f32],
+}
+
+impl G1Table<'static> {
+    /// The table as one flat row-major array (what a GPU host uploads).
+    pub const FLAT: &'static [f32] = G1_Q.as_flattened();
+    /// The compiled-in table (CPU).
+    pub const BUILTIN: G1Table<'static> = G1Table { q: Self::FLAT };
+}
+
+impl<'a> G1Table<'a> {
+    /// A view over a flat row-major copy of [`G1Table::FLAT`] (e.g. a GPU storage buffer).
+    /// A shorter slice reads as 0 beyond its end rather than panicking.
+    #[inline]
+    pub fn from_flat(q: &'a [f32]) -> Self {
+        G1Table { q }
+    }
+
+    /// Entry `(row, col)`, 0 outside the table.
+    #[inline]
+    fn at(&self, row: usize, col: usize) -> f32 {
+        let i = row * G1_NV + col;
+        if row < G1_NP && col < G1_NV && i < self.q.len() {
+            self.q[i]
+        } else {
+            0.0
+        }
+    }
+}
 
 /// Mean positive slope of the unit-β marginal `P2`: `m(p) = Γ(3/(2p)) / (π Γ(1/p))`.
 #[inline]
@@ -46,7 +85,7 @@ fn cell(x: f32, lo: f32, hi: f32, n: usize) -> (usize, f32) {
 }
 
 /// `G1` for the precomputed `v = β tanθ · m(p)` and `ln p` (clamped to the table).
-pub fn g1_from_v(v: f32, ln_p: f32) -> f32 {
+pub fn g1_from_v(table: &G1Table, v: f32, ln_p: f32) -> f32 {
     if !(v > 0.0) {
         return 1.0;
     }
@@ -70,9 +109,7 @@ pub fn g1_from_v(v: f32, ln_p: f32) -> f32 {
         let mut b = 0;
         while b < 4 {
             let col = iv + b - 1;
-            if row < G1_NP && col < G1_NV {
-                s += wv[b] * G1_Q[row][col];
-            }
+            s += wv[b] * table.at(row, col);
             b += 1;
         }
         q += wp[a] * s;
@@ -81,8 +118,13 @@ pub fn g1_from_v(v: f32, ln_p: f32) -> f32 {
     math::clamp(q / (1.0 + v), 0.0, 1.0)
 }
 
-/// `G1(θ)` for `tanθ = tan_theta`, width `β` and kurtosis `p` (Eq. 42).
+/// `G1(θ)` for `tanθ = tan_theta`, width `β` and kurtosis `p` (Eq. 42), from the builtin
+/// table.
 pub fn smith_g1(tan_theta: f32, beta: f32, p: f32) -> f32 {
     let p = math::clamp(p, P_MIN, P_MAX);
-    g1_from_v(beta * tan_theta * mean_slope(p), math::ln(p))
+    g1_from_v(
+        &G1Table::BUILTIN,
+        beta * tan_theta * mean_slope(p),
+        math::ln(p),
+    )
 }

@@ -33,6 +33,7 @@ pub mod tables;
 use crate::fresnel::fresnel;
 use crate::math;
 use bytemuck::{Pod, Zeroable};
+use g1::G1Table;
 use glam::Vec3;
 use layers::LayerForm;
 use ndf::GenBeckmann;
@@ -185,9 +186,12 @@ impl GhsParams {
     }
 }
 
-/// A GHS material prepared for one wavelength: clamped parameters and derived constants.
+/// A GHS material prepared for one wavelength: clamped parameters, derived constants and
+/// the G1 table it reads (`'t`: the table's borrow; `'static` for the builtin one).
 #[derive(Clone, Copy, Debug)]
-pub struct Ghs {
+pub struct Ghs<'t> {
+    /// The Smith G1 table.
+    pub g1_table: G1Table<'t>,
     /// σs/λ.
     pub sigma_over_lambda: f32,
     /// The NDF.
@@ -218,10 +222,17 @@ fn sane(x: f32, lo: f32, hi: f32) -> f32 {
     math::clamp(x, lo, hi)
 }
 
-impl Ghs {
+impl Ghs<'static> {
+    /// [`Ghs::with_g1_table`] with the builtin table ([`G1Table::BUILTIN`]).
+    pub fn new(params: &GhsParams, lambda_um: f32) -> Ghs<'static> {
+        Ghs::with_g1_table(params, lambda_um, G1Table::BUILTIN)
+    }
+}
+
+impl<'t> Ghs<'t> {
     /// Clamps `params` into the supported ranges ([`limits`], [`g1::P_MIN`]…) and
     /// precomputes the wavelength-dependent constants. `lambda_um` is clamped to ≥ 1e-3 µm.
-    pub fn new(params: &GhsParams, lambda_um: f32) -> Ghs {
+    pub fn with_g1_table(params: &GhsParams, lambda_um: f32, g1_table: G1Table<'t>) -> Ghs<'t> {
         let lambda = sane(lambda_um, 1.0e-3, 1.0e3);
         let p = sane(params.p, g1::P_MIN, g1::P_MAX);
         let beta = sane(params.beta, limits::BETA_MIN, limits::BETA_MAX);
@@ -233,6 +244,7 @@ impl Ghs {
             limits::B_OVER_LAMBDA_MAX,
         );
         Ghs {
+            g1_table,
             sigma_over_lambda: sane(
                 params.sigma_s_um / lambda,
                 0.0,
@@ -256,7 +268,7 @@ impl Ghs {
     pub fn g1(&self, cos_t: f32) -> f32 {
         let c = math::max(cos_t, limits::COS_MIN);
         let tan = math::sqrt0(1.0 - c * c) / c;
-        g1::g1_from_v(tan * self.beta_m, self.ln_p)
+        g1::g1_from_v(&self.g1_table, tan * self.beta_m, self.ln_p)
     }
 
     /// `σ_rel²` for the incident direction `wi`.
@@ -360,5 +372,16 @@ pub fn half_vector(wi: Vec3, wo: Vec3) -> Option<(Vec3, f32)> {
 /// Directions in the local frame (z = normal), pointing away from the surface; 0 below the
 /// horizon. Never NaN/Inf (non-finite intermediate results are masked to 0).
 pub fn evaluate(params: &GhsParams, wi: Vec3, wo: Vec3, lambda_um: f32) -> f32 {
-    Ghs::new(params, lambda_um).eval(wi, wo)
+    evaluate_with_g1_table(params, G1Table::BUILTIN, wi, wo, lambda_um)
+}
+
+/// [`evaluate`] reading G1 from `g1_table` (a GPU entry point passes its storage buffer).
+pub fn evaluate_with_g1_table(
+    params: &GhsParams,
+    g1_table: G1Table,
+    wi: Vec3,
+    wo: Vec3,
+    lambda_um: f32,
+) -> f32 {
+    Ghs::with_g1_table(params, lambda_um, g1_table).eval(wi, wo)
 }

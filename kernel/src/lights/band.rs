@@ -17,7 +17,7 @@
 
 use crate::math;
 
-use super::si_fast::si_fast;
+use super::si_fast::si_fast_split;
 
 /// Which sine integral the band integral uses.
 // `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
@@ -46,25 +46,47 @@ impl SiMode {
     /// `Si(x)` by this method.
     #[inline]
     pub fn si(self, x: f32) -> f32 {
+        let (asymptote, rest) = self.si_split(x);
+        asymptote - rest
+    }
+
+    /// `Si(x) = asymptote − rest` by this method, with `asymptote = ±π/2` and a small
+    /// `rest` far out.
+    #[inline]
+    pub fn si_split(self, x: f32) -> (f32, f32) {
         match self {
-            SiMode::Exact => math::si(x),
-            SiMode::Velinov => math::si_velinov(x),
-            SiMode::Fast => si_fast(x),
+            SiMode::Exact => math::si_split(x),
+            SiMode::Velinov => math::si_velinov_split(x),
+            SiMode::Fast => si_fast_split(x),
         }
     }
+}
+
+/// `A(q) = W² ∫_0^q sinc²(πWt) dt = W (Si(2πWq) − πWq sinc²(πWq)) / π` (µm, q in 1/µm),
+/// returned as `(asymptote, rest)` with `A = W/π · (asymptote − rest)`: far out,
+/// `asymptote = ±π/2` and `rest` is the small tail `W⁻¹π ∫_q^{±∞}`, so two values on the
+/// same far side subtract without cancelling against `W/2`.
+#[inline]
+fn band_antiderivative_split(width: f32, q: f32, si: SiMode) -> (f32, f32) {
+    let x = math::PI * width * q;
+    let s = math::sinc(x);
+    let (asymptote, rest) = si.si_split(2.0 * x);
+    (asymptote, rest + x * s * s)
 }
 
 /// `A(q) = W² ∫_0^q sinc²(πWt) dt = W (Si(2πWq) − πWq sinc²(πWq)) / π` (µm, q in 1/µm).
 #[inline]
 pub fn band_antiderivative(width: f32, q: f32, si: SiMode) -> f32 {
-    let x = math::PI * width * q;
-    let s = math::sinc(x);
-    width * (si.si(2.0 * x) - x * s * s) / math::PI
+    let (asymptote, rest) = band_antiderivative_split(width, q, si);
+    width * (asymptote - rest) / math::PI
 }
 
 /// `W² ∫_{q0}^{q1} sinc²(πWξ₂) dξ₂` (Velinov Eq. 27's `N(ξ, q1) − N(ξ, q0)` across the
-/// scratch); negative when `q1 < q0`.
+/// scratch); negative when `q1 < q0`. Far out on one side the asymptotes cancel exactly and
+/// only the tails are subtracted (relative error `~ε` instead of `~ε·πW|q|`).
 #[inline]
 pub fn band_integral(width: f32, q0: f32, q1: f32, si: SiMode) -> f32 {
-    band_antiderivative(width, q1, si) - band_antiderivative(width, q0, si)
+    let (a0, r0) = band_antiderivative_split(width, q0, si);
+    let (a1, r1) = band_antiderivative_split(width, q1, si);
+    width * ((a1 - a0) + (r0 - r1)) / math::PI
 }

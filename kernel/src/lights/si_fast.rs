@@ -38,9 +38,18 @@ const G: [f32; 4] = [
 const X0: f32 = 4.0;
 
 /// Fast `Si(x)` (absolute error ≤ 6e-5; exact at 0, odd, tends to ±π/2).
+#[inline]
 pub fn si_fast(x: f32) -> f32 {
+    let (asymptote, rest) = si_fast_split(x);
+    asymptote - rest
+}
+
+/// [`si_fast`] as `asymptote − rest`, like [`math::si_split`]: `(±π/2, tail)` for
+/// |x| > 4, `(0, −Si(x))` otherwise.
+pub fn si_fast_split(x: f32) -> (f32, f32) {
     let ax = math::abs(x);
-    let r = if ax <= X0 {
+    let s = math::sign(x);
+    if ax <= X0 {
         let x2 = ax * ax;
         let mut acc = P[6];
         let mut k = 6;
@@ -48,12 +57,14 @@ pub fn si_fast(x: f32) -> f32 {
             k -= 1;
             acc = acc * x2 + P[k];
         }
-        ax * acc
+        (0.0, -s * ax * acc)
     } else {
         let t = X0 * X0 / (ax * ax);
         let f = (F[0] + t * (F[1] + t * (F[2] + t * F[3]))) / ax;
         let g = (G[0] + t * (G[1] + t * (G[2] + t * G[3]))) / (ax * ax);
-        0.5 * math::PI - f * math::cos(ax) - g * math::sin(ax)
-    };
-    math::sign(x) * r
+        (
+            s * 0.5 * math::PI,
+            s * (f * math::cos(ax) + g * math::sin(ax)),
+        )
+    }
 }

@@ -5,6 +5,7 @@
 //! `libm` calls and lowers them to GLSL.std.450 instructions. Functions rust-gpu lacks
 //! (`erf`, `hypot`, complex `sqrt`/`exp`, `Si`) are built here from those primitives.
 
+mod atan;
 mod complex;
 mod expm1;
 mod faddeeva;
@@ -12,12 +13,13 @@ mod gamma;
 mod gauss_interval;
 mod si;
 
+pub use atan::{acos, asin, atan, atan2};
 pub use complex::{C32, cis, cmul_i, cscale, csqrt, one_minus_cis};
 pub use expm1::{expm1, ln1p};
 pub use faddeeva::{faddeeva, faddeeva_lanes};
 pub use gamma::{gamma, gamma_inv, gamma_p, gamma_p_inv, gamma_q, gamma_q_inv, lgamma};
 pub use gauss_interval::{erf, gauss_fourier_interval, gauss_interval};
-pub use si::{si, si_velinov};
+pub use si::{si, si_split, si_velinov, si_velinov_split};
 
 /// π in `f32`.
 pub const PI: f32 = core::f32::consts::PI;
@@ -101,30 +103,6 @@ pub fn tan(x: f32) -> f32 {
 #[inline]
 pub fn tanh(x: f32) -> f32 {
     libm::tanhf(x)
-}
-
-/// Four-quadrant arctangent of `y/x`.
-#[inline]
-pub fn atan2(y: f32, x: f32) -> f32 {
-    libm::atan2f(y, x)
-}
-
-/// Arctangent.
-#[inline]
-pub fn atan(x: f32) -> f32 {
-    libm::atanf(x)
-}
-
-/// Arcsine of `x` clamped to [-1, 1] (no NaN for arguments just outside by rounding).
-#[inline]
-pub fn asin(x: f32) -> f32 {
-    libm::asinf(clamp(x, -1.0, 1.0))
-}
-
-/// Arccosine of `x` clamped to [-1, 1].
-#[inline]
-pub fn acos(x: f32) -> f32 {
-    libm::acosf(clamp(x, -1.0, 1.0))
 }
 
 /// `x^y`.
