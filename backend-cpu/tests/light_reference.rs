@@ -3,7 +3,8 @@
 //! lights (sizes, distances, elevations down to partly below the horizon, scratch
 //! orientations, wavelengths, widths); and the reference against itself and Monte Carlo.
 //!
-//! Tolerances (each test states its own): the 3-band Gauss–Hermite rule holds 1 % for
+//! Tolerances (each test states its own): the extent rule (`bands = 20`) holds 1 % for
+//! spheres and polygons, small spheres included; the 3-band Gauss–Hermite rule holds 1 % for
 //! spheres down to α = 0.08 rad; Velinov's single band (Eq. 27) only ~3 % even for large
 //! spheres, because the band often crosses near the light's edge where the chord changes
 //! across the band; polygons (kinks in the chord at corners) and lights cut by the horizon
@@ -87,6 +88,7 @@ fn spheres_within_one_percent() {
     );
     check(&large, 3, 0.01);
     check(&large, 1, 0.03);
+    check(&large, 20, 0.01);
     let small = sweep(
         12,
         SweepRanges {
@@ -98,6 +100,19 @@ fn spheres_within_one_percent() {
         1,
     );
     check(&small, 3, 0.01);
+    check(&small, 20, 0.01);
+    // Small spheres grazed by the band: Gauss–Hermite fails here, the extent rule not.
+    let tiny = sweep(
+        13,
+        SweepRanges {
+            alpha: (0.04, 0.08),
+            below: ABOVE,
+            polygon: 0.0,
+        },
+        12,
+        1,
+    );
+    check(&tiny, 20, 0.01);
 }
 
 #[test]
@@ -114,6 +129,7 @@ fn polygons_within_a_few_percent() {
         1,
     );
     check(&cases, 3, 0.03);
+    check(&cases, 20, 0.01);
 }
 
 #[test]

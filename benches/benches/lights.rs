@@ -85,7 +85,7 @@ fn main() {
             (SiMode::Velinov, "Eq. 29"),
             (SiMode::Fast, "fast"),
         ] {
-            for bands in [1, 3, 5] {
+            for bands in [1, 3, 5, 20] {
                 println!("{name} | {sname} | {bands} | {:.0}", time(cases, si, bands));
             }
         }

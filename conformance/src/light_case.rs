@@ -34,7 +34,7 @@ pub struct LightBatch {
     pub queries: Vec<LightQuery>,
 }
 
-/// Expands `{"seed", "queries", "eta": "finite"|"infinite", "bands": 1|3|5,
+/// Expands `{"seed", "queries", "eta": "finite"|"infinite", "bands": 1|3|5|20,
 /// "si": "exact"|"velinov"|"fast"}` (`eta`, `bands`, `si` optional: finite, 1, exact).
 pub fn random_light_batch(v: &Value, path: &str) -> Result<LightBatch, SpecError> {
     let o = Obj::new(v, path, &["seed", "queries", "eta", "bands", "si"])?;
@@ -57,9 +57,14 @@ pub fn random_light_batch(v: &Value, path: &str) -> Result<LightBatch, SpecError
     };
     let bands = match o.get("bands") {
         None => 1,
-        Some(_) => match integer("bands", 5.0)? {
-            b @ (1 | 3 | 5) => b as u32,
-            _ => return Err(SpecError::field(o.path_of("bands"), "must be 1, 3 or 5")),
+        Some(_) => match integer("bands", 20.0)? {
+            b @ (1 | 3 | 5 | 20) => b as u32,
+            _ => {
+                return Err(SpecError::field(
+                    o.path_of("bands"),
+                    "must be 1, 3, 5 or 20",
+                ));
+            }
         },
     };
     let si = match o.opt_choice("si", &["exact", "velinov", "fast"])? {

@@ -14,7 +14,7 @@
 //! `sigma_um`, `material` and `scratches` are read exactly as by `scratchwave table` (same
 //! field paths in errors); exactly one scratch. `options` is optional: `eta` and
 //! `depth_term` as for `table` (model `velinov`), `bands` 1 (Velinov Eq. 27, default), 3 or 5
-//! (Gauss–Hermite bands, see `lights::integrate::BandRule`), `reference_rel_tol` (default
+//! (Gauss–Hermite bands) or 20 (the extent rule; see `lights::integrate::BandRule`), `reference_rel_tol` (default
 //! 1e-4). Light positions are in the shading frame, in any one unit. Polygons need ≥ 3
 //! vertices; more than the kernel's 16 are split into a fan of triangles about their mean
 //! (exact for polygons star-shaped about it). Columns: the closed form with the exact Si,
@@ -94,10 +94,10 @@ pub fn light_spec(v: &Value) -> Result<LightSpec, SpecError> {
         params.depth_term =
             u32::from(o.opt_choice("depth_term", &["small_angle", "exact"])? == Some("exact"));
         if let Some(b) = o.opt_num("bands")? {
-            if ![1.0, 3.0, 5.0].contains(&b) {
+            if ![1.0, 3.0, 5.0, 20.0].contains(&b) {
                 return Err(SpecError::field(
                     o.path_of("bands"),
-                    format!("must be 1, 3 or 5, got {b}"),
+                    format!("must be 1, 3, 5 or 20, got {b}"),
                 ));
             }
             params.bands = b as u32;

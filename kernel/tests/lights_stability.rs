@@ -127,7 +127,7 @@ fn a_million_configurations_are_finite_and_non_negative() {
             eta: rng.pick(2) as u32,
             depth_term: rng.pick(2) as u32,
             si_mode: rng.pick(3) as u32,
-            bands: [1, 3, 5][rng.pick(3)],
+            bands: [1, 3, 5, 20][rng.pick(4)],
             ..LightParams::default()
         };
         let material = if rng.u() < 0.5 {

@@ -23,7 +23,7 @@ use scratchwave_kernel::scratch::ScratchSlice;
 use std::fmt::Write;
 use std::time::Instant;
 
-const METHODS: [(SiMode, u32, &str, &str); 7] = [
+const METHODS: [(SiMode, u32, &str, &str); 9] = [
     (SiMode::Exact, 1, "Eq. 27, exact Si", "#1f77b4"),
     (SiMode::Velinov, 1, "Eq. 27, Eq. 29 Si", "#d62728"),
     (SiMode::Fast, 1, "Eq. 27, fast Si", "#2ca02c"),
@@ -31,7 +31,11 @@ const METHODS: [(SiMode, u32, &str, &str); 7] = [
     (SiMode::Fast, 3, "3 bands, fast Si", "#8c564b"),
     (SiMode::Velinov, 3, "3 bands, Eq. 29 Si", "#e377c2"),
     (SiMode::Exact, 5, "5 bands, exact Si", "#17becf"),
+    (SiMode::Exact, 20, "extent rule, exact Si", "#bcbd22"),
+    (SiMode::Fast, 20, "extent rule, fast Si", "#7f7f7f"),
 ];
+/// Index in [`METHODS`] of the extent rule with the exact Si.
+const EXTENT: usize = 7;
 const MC_N: [usize; 7] = [16, 64, 256, 1024, 4096, 16384, 65536];
 
 fn closed(c: &LightCase, si: SiMode, bands: u32) -> f64 {
@@ -186,7 +190,7 @@ fn main() {
 
     // Spheres vs polygons, partly below the horizon.
     let mut split = String::from(
-        "| subset | n | Eq. 27 exact Si: median / p90 / max | 3 bands exact Si: median / p90 / max |\n|---|---|---|---|\n",
+        "| subset | n | Eq. 27 exact Si: median / p90 / max | extent rule exact Si: median / p90 / max |\n|---|---|---|---|\n",
     );
     let subsets: [(&str, Subset); 4] = [
         ("spheres", Box::new(|c: &LightCase| c.meta.vertices == 0)),
@@ -203,7 +207,7 @@ fn main() {
             continue;
         }
         let pick = |k: usize| stats(&idx.iter().map(|&i| method_errs[k][i]).collect::<Vec<_>>());
-        let (a, b) = (pick(0), pick(3));
+        let (a, b) = (pick(0), pick(EXTENT));
         let _ = writeln!(
             split,
             "| {name} | {} | {:.1e} / {:.1e} / {:.1e} | {:.1e} / {:.1e} / {:.1e} |",
@@ -216,11 +220,11 @@ fn main() {
             b.max
         );
     }
-    // Worst cases of Eq. 27 and of the 3-band rule (exact Si).
+    // Worst cases of Eq. 27, the 3-band rule and the extent rule (exact Si).
     let mut worst = String::from(
         "| method | rel. error | kind | α (rad) | elevation (rad) | scratch angle (rad) |\n|---|---|---|---|---|---|\n",
     );
-    for k in [0usize, 3] {
+    for k in [0usize, 3, EXTENT] {
         let mut idx: Vec<usize> = (0..m).collect();
         idx.sort_by(|&a, &b| method_errs[k][b].total_cmp(&method_errs[k][a]));
         for &i in idx.iter().take(5) {
@@ -244,7 +248,7 @@ fn main() {
     let mut csv =
         String::from("kind,vertices,alpha,elevation,scratch_angle,reference,reference_err");
     for (_, _, label, _) in METHODS {
-        csv += &format!(",{label}");
+        csv += &format!(",\"{label}\"");
     }
     for nmc in MC_N {
         csv += &format!(",MC {nmc}");

@@ -32,6 +32,8 @@ pub struct SphericalPolygon {
     spoke: [Vec3; MAX_VERTICES],
     /// Orientation sign of fan triangle m (0: degenerate).
     orient: [f32; MAX_VERTICES],
+    /// Unit vertex directions `U_m`.
+    vertex: [Vec3; MAX_VERTICES],
     /// Normalised vertex mean ĉ.
     pub center: Vec3,
 }
@@ -43,6 +45,7 @@ impl SphericalPolygon {
         edge: [Vec3::ZERO; MAX_VERTICES],
         spoke: [Vec3::ZERO; MAX_VERTICES],
         orient: [0.0; MAX_VERTICES],
+        vertex: [Vec3::ZERO; MAX_VERTICES],
         center: Vec3::Z,
     };
 
@@ -81,6 +84,7 @@ impl SphericalPolygon {
             edge: [Vec3::ZERO; MAX_VERTICES],
             spoke: [Vec3::ZERO; MAX_VERTICES],
             orient: [0.0; MAX_VERTICES],
+            vertex: u,
             center,
         };
         let mut m = 0;
@@ -120,6 +124,29 @@ impl SphericalPolygon {
         false
     }
 
+    /// `[min, max]` of `u · w` over the polygon's directions `w` (the union of its fan
+    /// triangles; the horizon is not applied, so this may be wider than the lit part).
+    pub fn dot_range(&self, u: Vec3) -> (f32, f32) {
+        let mut range = (f32::INFINITY, f32::NEG_INFINITY);
+        let mut m = 0;
+        while m < self.count && m < MAX_VERTICES {
+            let next = if m + 1 < self.count { m + 1 } else { 0 };
+            if next < MAX_VERTICES {
+                range = widen(range, arc_dot_range(self.vertex[m], self.vertex[next], u));
+                range = widen(range, arc_dot_range(self.center, self.vertex[m], u));
+            }
+            m += 1;
+        }
+        // An extremum inside a fan triangle is at ±u itself.
+        if self.contains(u) {
+            range.1 = 1.0;
+        }
+        if self.contains(-u) {
+            range.0 = -1.0;
+        }
+        range
+    }
+
     /// Adds where the band crosses the great circles of the polygon's edges.
     pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
         let mut m = 0;
@@ -128,4 +155,40 @@ impl SphericalPolygon {
             m += 1;
         }
     }
+}
+
+/// The union of two ranges.
+#[inline]
+fn widen(a: (f32, f32), b: (f32, f32)) -> (f32, f32) {
+    (math::min(a.0, b.0), math::max(a.1, b.1))
+}
+
+/// `[min, max]` of `u · w` along the shorter great-circle arc from `a` to `b` (unit):
+/// `w(s) = a cos s + e sin s`, so `u · w = A cos s + B sin s` peaks at `s = atan2(B, A)`
+/// and bottoms out half a turn away; each counts if it lies on the arc.
+pub fn arc_dot_range(a: Vec3, b: Vec3, u: Vec3) -> (f32, f32) {
+    let (ua, ub) = (u.dot(a), u.dot(b));
+    let mut range = (math::min(ua, ub), math::max(ua, ub));
+    let n = a.cross(b);
+    let sin_t = n.length();
+    if !(sin_t > 1.0e-7) {
+        return range;
+    }
+    let theta = math::atan2(sin_t, a.dot(b));
+    let e = n.cross(a) * (1.0 / sin_t);
+    let (p, q) = (ua, u.dot(e));
+    let amp = math::sqrt(p * p + q * q);
+    let s_max = math::atan2(q, p);
+    let s_min = if s_max > 0.0 {
+        s_max - math::PI
+    } else {
+        s_max + math::PI
+    };
+    if s_max >= 0.0 && s_max <= theta {
+        range.1 = math::max(range.1, amp);
+    }
+    if s_min >= 0.0 && s_min <= theta {
+        range.0 = math::min(range.0, -amp);
+    }
+    range
 }

@@ -90,6 +90,18 @@ impl SphereCap {
         self.alpha >= math::PI || (w - self.axis).length_squared() <= self.chord2
     }
 
+    /// `[min, max]` of `u · w` (unit `u`) over the cone's directions `w`: the angle to `u`
+    /// ranges over `θ ∓ α` clamped to `[0, π]`.
+    pub fn dot_range(&self, u: Vec3) -> (f32, f32) {
+        if self.alpha >= math::PI {
+            return (-1.0, 1.0);
+        }
+        let theta = math::atan2(u.cross(self.axis).length(), u.dot(self.axis));
+        let near = math::max(theta - self.alpha, 0.0);
+        let far = math::min(theta + self.alpha, math::PI);
+        (math::cos(far), math::cos(near))
+    }
+
     /// Adds where the band crosses the cone boundary (at most two points).
     pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
         if self.alpha >= math::PI {
