@@ -87,6 +87,23 @@ fn max_rel_diff(reference: &[f32], other: &[f32]) -> (f32, usize) {
     worst
 }
 
+/// Same length, not all zero, and within [`REL_TOL`] above the floor.
+fn assert_agree(label: &str, cpu: &[f32], gpu: &[f32]) {
+    assert_eq!(gpu.len(), cpu.len());
+    assert!(
+        cpu.iter().any(|&v| v > 0.0),
+        "{label}: an all-zero case tests nothing"
+    );
+    let (rel, at) = max_rel_diff(cpu, gpu);
+    eprintln!("{label}: max rel diff {rel:.2e}");
+    assert!(
+        rel <= REL_TOL,
+        "{label}: rel diff {rel:e} at query {at}: cpu {} gpu {}",
+        cpu[at],
+        gpu[at]
+    );
+}
+
 #[test]
 fn tables_agree_with_the_cpu_backend() {
     let Some(gpu) = common::lavapipe() else {
@@ -109,19 +126,7 @@ fn tables_agree_with_the_cpu_backend() {
                 .evaluate_table(&params, &scratches, &queries)
                 .unwrap()
                 .output;
-            assert_eq!(gpu_out.len(), cpu.len());
-            assert!(
-                cpu.iter().any(|&v| v > 0.0),
-                "{model:?}: an all-zero case tests nothing"
-            );
-            let (rel, at) = max_rel_diff(&cpu, &gpu_out);
-            eprintln!("{model:?} eta={eta} depth_term={depth_term}: max rel diff {rel:.2e}");
-            assert!(
-                rel <= REL_TOL,
-                "{model:?} {params:?}: rel diff {rel:e} at query {at}: cpu {} gpu {}",
-                cpu[at],
-                gpu_out[at]
-            );
+            assert_agree(&format!("{params:?}"), &cpu, &gpu_out);
         }
     }
 }
@@ -208,18 +213,6 @@ fn ghs_tables_agree_with_the_cpu_backend() {
     for params in materials {
         let cpu = evaluate_ghs_table(Backend::Scalar, &params, &queries);
         let gpu_out = gpu.evaluate_ghs_table(&params, &queries).unwrap().output;
-        assert_eq!(gpu_out.len(), cpu.len());
-        assert!(
-            cpu.iter().any(|&v| v > 0.0),
-            "an all-zero case tests nothing"
-        );
-        let (rel, at) = max_rel_diff(&cpu, &gpu_out);
-        eprintln!("ghs {params:?}: max rel diff {rel:.2e}");
-        assert!(
-            rel <= REL_TOL,
-            "ghs {params:?}: rel diff {rel:e} at query {at}: cpu {} gpu {}",
-            cpu[at],
-            gpu_out[at]
-        );
+        assert_agree(&format!("ghs {params:?}"), &cpu, &gpu_out);
     }
 }

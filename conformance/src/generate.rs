@@ -16,20 +16,9 @@ use serde_json::Value;
 /// Expands `{"seed", "queries", "scratches", "base": <spec without scratches/queries>}`.
 pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
     let o = Obj::new(v, path, &["seed", "queries", "scratches", "base"])?;
-    let count = |k: &str, max: f64| -> Result<usize, SpecError> {
-        let n = o.num(k)?;
-        if n >= 0.0 && n <= max && n.fract() == 0.0 {
-            Ok(n as usize)
-        } else {
-            Err(SpecError::field(
-                o.path_of(k),
-                format!("must be an integer in 0..={max}"),
-            ))
-        }
-    };
-    let seed = count("seed", 1e15)? as u64;
-    let nq = count("queries", 1e7)?;
-    let ns = count("scratches", 1e6)?;
+    let seed = o.integer("seed", 1e15)?;
+    let nq = o.integer("queries", 1e7)? as usize;
+    let ns = o.integer("scratches", 1e6)? as usize;
     let mut base = o.req("base")?.clone();
     if let Some(m) = base.as_object_mut() {
         m.insert("scratches".into(), Value::Array(vec![]));

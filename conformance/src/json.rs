@@ -61,6 +61,19 @@ impl<'a> Obj<'a> {
         number(self.req(key)?, &self.path_of(key))
     }
 
+    /// A required whole number in `0..=max` (seeds, counts).
+    pub fn integer(&self, key: &str, max: f64) -> Result<u64, SpecError> {
+        let n = self.num(key)?;
+        if n >= 0.0 && n <= max && n.fract() == 0.0 {
+            Ok(n as u64)
+        } else {
+            Err(SpecError::field(
+                self.path_of(key),
+                format!("must be an integer in 0..={max}"),
+            ))
+        }
+    }
+
     /// An optional finite number.
     pub fn opt_num(&self, key: &str) -> Result<Option<f64>, SpecError> {
         self.get(key)

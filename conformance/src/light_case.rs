@@ -38,26 +38,15 @@ pub struct LightBatch {
 /// "si": "exact"|"velinov"|"fast"}` (`eta`, `bands`, `si` optional: finite, 1, exact).
 pub fn random_light_batch(v: &Value, path: &str) -> Result<LightBatch, SpecError> {
     let o = Obj::new(v, path, &["seed", "queries", "eta", "bands", "si"])?;
-    let integer = |k: &str, max: f64| -> Result<u64, SpecError> {
-        let n = o.num(k)?;
-        if n >= 0.0 && n <= max && n.fract() == 0.0 {
-            Ok(n as u64)
-        } else {
-            Err(SpecError::field(
-                o.path_of(k),
-                format!("must be an integer in 0..={max}"),
-            ))
-        }
-    };
-    let seed = integer("seed", 1e15)?;
-    let count = integer("queries", 1e6)? as usize;
+    let seed = o.integer("seed", 1e15)?;
+    let count = o.integer("queries", 1e6)? as usize;
     let eta = match o.opt_choice("eta", &["finite", "infinite"])? {
         Some("infinite") => EtaMode::Infinite,
         _ => EtaMode::Finite,
     };
     let bands = match o.get("bands") {
         None => 1,
-        Some(_) => match integer("bands", 20.0)? {
+        Some(_) => match o.integer("bands", 20.0)? {
             b @ (1 | 3 | 5 | 20) => b as u32,
             _ => {
                 return Err(SpecError::field(

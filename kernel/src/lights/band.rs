@@ -28,7 +28,7 @@ pub enum SiMode {
     Exact = 0,
     /// Velinov's Eq. 29 ([`math::si_velinov`]).
     Velinov = 1,
-    /// [`si_fast`] (|error| ≤ 6e-5, cheaper than `Exact`).
+    /// [`si_fast`](super::si_fast::si_fast) (|error| ≤ 6e-5, cheaper than `Exact`).
     Fast = 2,
 }
 
