@@ -33,6 +33,21 @@ impl SplitMix64 {
         lo + (hi - lo) * self.next_f32()
     }
 
+    /// Uniform in `[0, 1)`, 53 random bits.
+    pub fn next_f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// Uniform in `[lo, hi)`, in f64.
+    pub fn range_f64(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next_f64()
+    }
+
+    /// Log-uniform in `[lo, hi)` (`lo > 0`), in f64.
+    pub fn log_range_f64(&mut self, lo: f64, hi: f64) -> f64 {
+        (lo.ln() + (hi.ln() - lo.ln()) * self.next_f64()).exp()
+    }
+
     /// Uniform on the unit sphere.
     pub fn direction(&mut self) -> [f32; 3] {
         let z = self.range(-1.0, 1.0);

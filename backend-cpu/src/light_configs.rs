@@ -10,32 +10,8 @@ use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, MAX_VERTI
 use scratchwave_kernel::scratch::{Profile, Scratch};
 use scratchwave_kernel::table::Material;
 
-/// A small deterministic generator (SplitMix64), so sweeps replay exactly.
-#[derive(Clone, Debug)]
-pub struct Rng(pub u64);
-
-impl Rng {
-    /// Next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    pub fn uniform(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    /// Uniform in [a, b).
-    pub fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.uniform()
-    }
-    /// Log-uniform in [a, b).
-    pub fn log_range(&mut self, a: f64, b: f64) -> f64 {
-        (a.ln() + (b.ln() - a.ln()) * self.uniform()).exp()
-    }
-}
+/// The sweeps' generator (seeded, so every sweep replays exactly).
+pub use crate::fixtures::SplitMix64 as Rng;
 
 /// What was drawn, for reports.
 #[derive(Clone, Copy, Debug, Default)]
@@ -107,20 +83,20 @@ pub fn random_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> LightCase {
 }
 
 fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> {
-    let alpha = rng.log_range(ranges.alpha.0, ranges.alpha.1);
-    let elevation = rng.range(-ranges.below * alpha, 1.5);
-    let azimuth = rng.range(0.0, std::f64::consts::TAU);
+    let alpha = rng.log_range_f64(ranges.alpha.0, ranges.alpha.1);
+    let elevation = rng.range_f64(-ranges.below * alpha, 1.5);
+    let azimuth = rng.range_f64(0.0, std::f64::consts::TAU);
     let dir = [
         elevation.cos() * azimuth.cos(),
         elevation.cos() * azimuth.sin(),
         elevation.sin(),
     ];
-    let dist = rng.log_range(1.0, 100.0);
+    let dist = rng.log_range_f64(1.0, 100.0);
     let center = [dir[0] * dist, dir[1] * dist, dir[2] * dist];
-    let is_poly = rng.uniform() < ranges.polygon;
+    let is_poly = rng.next_f64() < ranges.polygon;
     let (light, vertices, wi_p) = if is_poly {
         // A radially jittered n-gon, tilted up to 50° away from facing the point.
-        let n = 3 + (rng.uniform() * 6.0) as usize;
+        let n = 3 + (rng.next_f64() * 6.0) as usize;
         let r = dist * alpha.tan();
         let helper = if dir[2].abs() < 0.9 {
             [0.0, 0.0, 1.0]
@@ -129,7 +105,7 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
         };
         let e1 = unit(cross(dir, helper));
         let e2 = cross(dir, e1);
-        let tilt = rng.range(0.0, 0.87);
+        let tilt = rng.range_f64(0.0, 0.87);
         let (st, ct) = tilt.sin_cos();
         let n_axis = [
             ct * dir[0] + st * e1[0],
@@ -137,11 +113,11 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
             ct * dir[2] + st * e1[2],
         ];
         let a1 = unit(cross(n_axis, e2));
-        let rot = rng.range(0.0, std::f64::consts::TAU);
+        let rot = rng.range_f64(0.0, std::f64::consts::TAU);
         let mut vs = Vec::new();
         for k in 0..n {
             let ph = rot + std::f64::consts::TAU * k as f64 / n as f64;
-            let rr = r * rng.range(0.8, 1.2);
+            let rr = r * rng.range_f64(0.8, 1.2);
             let (s, c) = ph.sin_cos();
             vs.push([
                 (center[0] + rr * (c * a1[0] + s * e2[0])) as f32,
@@ -150,8 +126,8 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
             ]);
         }
         // A point inside: random fan triangle, random barycentric.
-        let k = (rng.uniform() * n as f64) as usize % n;
-        let (mut x, mut y) = (rng.uniform(), rng.uniform());
+        let k = (rng.next_f64() * n as f64) as usize % n;
+        let (mut x, mut y) = (rng.next_f64(), rng.next_f64());
         if x + y > 1.0 {
             (x, y) = (1.0 - x, 1.0 - y);
         }
@@ -165,7 +141,7 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
         debug_assert!(n <= MAX_VERTICES);
         (Light::polygon(&vs), n, unit(p))
     } else {
-        let cone = if rng.uniform() < 0.5 {
+        let cone = if rng.next_f64() < 0.5 {
             Cone::Asin
         } else {
             Cone::Atan
@@ -182,8 +158,8 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
         };
         let e1 = unit(cross(dir, helper));
         let e2 = cross(dir, e1);
-        let th = alpha * rng.uniform().sqrt();
-        let ph = rng.range(0.0, std::f64::consts::TAU);
+        let th = alpha * rng.next_f64().sqrt();
+        let ph = rng.range_f64(0.0, std::f64::consts::TAU);
         let (st, ct) = th.sin_cos();
         let p = [
             ct * dir[0] + st * (ph.cos() * e1[0] + ph.sin() * e2[0]),
@@ -196,7 +172,7 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
     if wi_p[2] < 0.02 {
         return None;
     }
-    let scratch_angle = rng.range(0.0, std::f64::consts::PI);
+    let scratch_angle = rng.range_f64(0.0, std::f64::consts::PI);
     let t = [scratch_angle.cos(), scratch_angle.sin()];
     let b = [-t[1], t[0]];
     let c = -(wi_p[0] * t[0] + wi_p[1] * t[1]);
@@ -204,22 +180,22 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
     if room <= 0.0 {
         return None;
     }
-    let wb = rng.range(-room.sqrt(), room.sqrt());
+    let wb = rng.range_f64(-room.sqrt(), room.sqrt());
     let wx = c * t[0] + wb * b[0];
     let wy = c * t[1] + wb * b[1];
     let wo = [wx, wy, (1.0 - wx * wx - wy * wy).sqrt()];
-    let sb = rng.range(-10.0, 10.0);
+    let sb = rng.range_f64(-10.0, 10.0);
     let scratch = Scratch::from_endpoints(
         [-150.0 * t[0] + sb * b[0], -150.0 * t[1] + sb * b[1]],
         [150.0 * t[0] + sb * b[0], 150.0 * t[1] + sb * b[1]],
-        rng.log_range(0.2, 5.0) as f32,
-        rng.range(0.02, 0.5) as f32,
+        rng.log_range_f64(0.2, 5.0) as f32,
+        rng.range_f64(0.02, 0.5) as f32,
         Profile::Rect,
     );
 
     let query = LightQuery {
         wo: wo.map(|v| v as f32),
-        lambda_nm: rng.range(380.0, 780.0) as f32,
+        lambda_nm: rng.range_f64(380.0, 780.0) as f32,
         x: [0.0, 0.0],
         material: Material::constant(1.0),
         light,

@@ -74,7 +74,7 @@ pub fn light_mc(
             return 0.0;
         }
         for _ in 0..n {
-            let mut pick = rng.uniform() * area;
+            let mut pick = rng.next_f64() * area;
             let mut tri = tris[k - 1];
             for t in &tris {
                 if pick < t.2 {
@@ -87,7 +87,7 @@ pub fn light_mc(
             if !(ta > 0.0) {
                 continue;
             }
-            let (mut x, mut y) = (rng.uniform(), rng.uniform());
+            let (mut x, mut y) = (rng.next_f64(), rng.next_f64());
             if x + y > 1.0 {
                 (x, y) = (1.0 - x, 1.0 - y);
             }
@@ -128,9 +128,9 @@ pub fn light_mc(
         let cos_a = alpha.cos();
         let solid = std::f64::consts::TAU * (1.0 - cos_a);
         for _ in 0..n {
-            let ct = 1.0 - rng.uniform() * (1.0 - cos_a);
+            let ct = 1.0 - rng.next_f64() * (1.0 - cos_a);
             let st = (1.0 - ct * ct).max(0.0).sqrt();
-            let ph = std::f64::consts::TAU * rng.uniform();
+            let ph = std::f64::consts::TAU * rng.next_f64();
             let (sp, cp) = ph.sin_cos();
             let wi = [
                 ct * axis[0] + st * (cp * e1[0] + sp * e2[0]),

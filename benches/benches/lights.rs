@@ -38,7 +38,7 @@ fn pass(cases: &[LightCase], si: SiMode, bands: u32) -> f64 {
 }
 
 fn main() {
-    let mut rng = Rng(99);
+    let mut rng = Rng::new(99);
     let sweep: Vec<LightCase> = (0..4096)
         .map(|_| {
             random_case(

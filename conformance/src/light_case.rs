@@ -61,7 +61,7 @@ pub fn random_light_batch(v: &Value, path: &str) -> Result<LightBatch, SpecError
         Some("fast") => SiMode::Fast,
         _ => SiMode::Exact,
     };
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let ranges = SweepRanges::default();
     let mut params = None;
     let mut scratches = Vec::with_capacity(count);

@@ -17,6 +17,7 @@
 //!   [`rho_p_accurate`] by the same quadrature as `eta_p_accurate`.
 
 use crate::math;
+use crate::math::quadrature::{GL8_W as GL_W, GL8_X as GL_X};
 use crate::scratch::Scratch;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
@@ -123,10 +124,6 @@ pub fn rho_p_accurate(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
     footprint_integral(s, e, sigma, false) * s.width / (math::TAU * sigma * sigma)
 }
 
-/// Gauss–Legendre 8-point nodes/weights on [−1, 1] (positive half).
-const GL_X: [f32; 4] = [0.183_434_64, 0.525_532_4, 0.796_666_5, 0.960_289_86];
-/// Weights for [`GL_X`].
-const GL_W: [f32; 4] = [0.362_683_8, 0.313_706_64, 0.222_381_03, 0.101_228_54];
 /// Breakpoint offsets (in σ) around each feature along the scratch.
 const OFFSETS: [f32; 5] = [-3.0, -1.5, 0.0, 1.5, 3.0];
 /// Maximum number of panel boundaries: the 2 ellipse ends, 5 offsets around each of the 2

@@ -91,7 +91,7 @@ fn main() {
     let n: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(200);
     let seed: u64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(5);
     let ranges = SweepRanges::default();
-    let mut rng = Rng(seed);
+    let mut rng = Rng::new(seed);
     let cases: Vec<LightCase> = (0..n).map(|_| random_case(&mut rng, &ranges, 1)).collect();
     let t0 = Instant::now();
     let refs: Vec<_> = cases
@@ -160,14 +160,14 @@ fn main() {
             .iter()
             .enumerate()
             .map(|(i, (c, r, _))| {
-                let mut rng = Rng(1000 + i as u64);
+                let mut rng = Rng::new(1000 + i as u64);
                 (light_mc(&c.params, &c.query, &c.scratch, nmc, &mut rng) / r - 1.0).abs()
             })
             .collect();
         // Cost on the first 16 cases (MC cost does not depend on the case much).
         let sub = &kept[..m.min(16)];
         let ns = min_time(|| {
-            let mut rng = Rng(7);
+            let mut rng = Rng::new(7);
             let mut sink = 0.0;
             for (c, _, _) in sub {
                 sink += light_mc(&c.params, &c.query, &c.scratch, nmc, &mut rng);

@@ -25,6 +25,7 @@ use super::polygon::{MAX_VERTICES, SphericalPolygon};
 use super::sphere::{Cone, SphereCap};
 use crate::ghs::tables::gauss_legendre::{GL_N, GL_WS, GL_XI};
 use crate::math;
+use crate::math::quadrature::{GL4_W, GL4_X};
 use crate::scratch::profile::mask_minus_profile;
 use crate::scratch::response::CUTOFF_SIGMAS;
 use crate::scratch::{DepthTerm, EtaMode, NearCursor, Profile, Scratch, ScratchSet, SegmentFrame};
@@ -335,10 +336,6 @@ const EXTENT_SDS: f32 = 4.5;
 /// `1/√(2π)`.
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_28;
 
-/// 4-point Gauss–Legendre nodes and weights on [−1, 1] (positive half).
-const GL4_X: [f32; 2] = [0.339_981_043_584_856_3, 0.861_136_311_594_052_6];
-/// See [`GL4_X`].
-const GL4_W: [f32; 2] = [0.652_145_154_862_546_1, 0.347_854_845_137_453_9];
 /// Most panels the V-groove quadrature uses per interval.
 const MAX_PANELS: u32 = 64;
 

@@ -15,21 +15,7 @@
 
 use super::complex::{C32, cis, cscale};
 use super::faddeeva::{faddeeva, faddeeva_lanes};
-
-/// 8-point Gauss–Legendre nodes on [−1, 1] (positive half).
-const GL_X: [f32; 4] = [
-    0.183_434_642_495_649_8,
-    0.525_532_409_916_329,
-    0.796_666_477_413_626_7,
-    0.960_289_856_497_536_3,
-];
-/// 8-point Gauss–Legendre weights matching [`GL_X`].
-const GL_W: [f32; 4] = [
-    0.362_683_783_378_362,
-    0.313_706_645_877_887_3,
-    0.222_381_034_453_374_5,
-    0.101_228_536_290_376_3,
-];
+use super::quadrature::{GL8_W as GL_W, GL8_X as GL_X};
 
 /// The Faddeeva argument `s(−y + ix)` of the endpoint `z = x + iy`, with `s = sign(x)` so
 /// that it lies in the upper half plane. The endpoint's term is then

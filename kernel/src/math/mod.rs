@@ -33,6 +33,7 @@ pub const SQRT_2: f32 = core::f32::consts::SQRT_2;
 pub const FRAC_1_SQRT_PI: f32 = 0.564_189_583_547_756_3;
 
 pub mod portable;
+pub mod quadrature;
 
 /// e^x.
 #[inline]
