@@ -133,13 +133,19 @@ pub struct Breakpoints {
 }
 
 impl Breakpoints {
+    /// An empty list.
+    #[inline]
+    pub fn empty() -> Breakpoints {
+        Breakpoints {
+            s: [0.0; MAX_BREAKPOINTS],
+            len: 0,
+        }
+    }
+
     /// The two ends of the upper half circle, `s = ±1` (the horizon).
     #[inline]
     pub fn half_circle() -> Breakpoints {
-        let mut b = Breakpoints {
-            s: [0.0; MAX_BREAKPOINTS],
-            len: 0,
-        };
+        let mut b = Breakpoints::empty();
         b.push(-1.0);
         b.push(1.0);
         b

@@ -20,12 +20,11 @@
 //! over- or under-estimated (measured in `backend-cpu/tests/light_reference.rs`).
 
 use super::band::{SiMode, band_integral};
-use super::band_circle::{BandCircle, Breakpoints};
+use super::band_circle::{BandCircle, Breakpoints, MAX_BREAKPOINTS};
 use super::polygon::{MAX_VERTICES, SphericalPolygon};
 use super::sphere::{Cone, SphereCap};
-use crate::ghs::tables::gauss_legendre::{GL_N, GL_WS, GL_XI};
 use crate::math;
-use crate::math::quadrature::{GL4_W, GL4_X};
+use crate::math::quadrature::{GL4_W, GL4_X, GL8_W, GL8_X};
 use crate::scratch::profile::mask_minus_profile;
 use crate::scratch::response::CUTOFF_SIGMAS;
 use crate::scratch::{DepthTerm, EtaMode, NearCursor, Profile, Scratch, ScratchSet, SegmentFrame};
@@ -129,7 +128,7 @@ pub struct LightParams {
     /// A [`SiMode`] as `u32`.
     pub si_mode: u32,
     /// Bands across ξ₁ (see [`BandRule`]): 0 or 1 → Velinov's single band; 3 or 5 →
-    /// Gauss–Hermite bands.
+    /// Gauss–Hermite bands; 20 → the extent rule.
     pub bands: u32,
     /// Explicit padding.
     pub pad: [u32; 3],
@@ -202,6 +201,17 @@ impl LightRegion {
         }
     }
 
+    /// Adds the values of `u · w` at the light's corners, where the chord of a band
+    /// `u · w = c` has kinks: polygon vertices above the horizon, and the points where the
+    /// light's boundary meets the horizon.
+    pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
+        if self.kind == LIGHT_POLYGON {
+            self.polygon.kinks(u, out)
+        } else {
+            self.sphere.kinks(u, out)
+        }
+    }
+
     /// A representative direction (for `F` and `γ`), lifted above the horizon.
     #[inline]
     pub fn center(&self) -> Vec3 {
@@ -226,9 +236,10 @@ impl LightRegion {
 /// polynomial where the band family leaves the light: the chord opens like a square root
 /// from the tangent band (and jumps where the band circle is small), which no Gauss–Hermite
 /// rule resolves (9 and 15 points were tried: 95.5 % and 97 % of the sweep within 1 %).
-/// [`BandRule::Extent`] instead finds the range of ξ₁ the light covers and integrates the
-/// Gaussian-weighted chord over it with a 20-point Gauss–Legendre rule in `1 − cos t`,
-/// which absorbs the square roots at both ends.
+/// [`BandRule::Extent`] instead finds the range of ξ₁ the light covers, cuts it at the
+/// chord's kinks (polygon corners, the horizon meeting the light) and integrates the
+/// Gaussian-weighted chord over each panel with an 8-point Gauss–Legendre rule in
+/// `1 − cos t`, which absorbs square roots and kinks at the panel ends.
 // `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -239,7 +250,8 @@ pub enum BandRule {
     Hermite3,
     /// 5-point Gauss–Hermite.
     Hermite5,
-    /// 20 bands over the light's own ξ₁ range ([`LightRegion::dot_range`]).
+    /// Bands placed over the light's own ξ₁ range ([`LightRegion::dot_range`]), panel by
+    /// panel between its kinks (`bands = 20` in [`LightParams`]).
     Extent,
 }
 
@@ -255,20 +267,19 @@ impl BandRule {
         }
     }
 
-    /// Number of bands.
+    /// Number of fixed bands (0 for [`BandRule::Extent`], which places its own).
     #[inline]
     pub fn count(self) -> usize {
         match self {
             BandRule::Single => 1,
             BandRule::Hermite3 => 3,
             BandRule::Hermite5 => 5,
-            BandRule::Extent => GL_N,
+            BandRule::Extent => 0,
         }
     }
 
-    /// Node `i` (in standard deviations) and its weight (weights sum to 1); for
-    /// [`BandRule::Extent`] the node of the unit interval and its weight, to be mapped onto
-    /// the light's range by the caller.
+    /// Node `i` (in standard deviations) and its weight (weights sum to 1); the extent rule
+    /// places its bands itself (`count` 0).
     #[inline]
     pub fn node(self, i: usize) -> (f32, f32) {
         match (self, i) {
@@ -280,7 +291,6 @@ impl BandRule {
             (BandRule::Hermite5, 3) => (-2.856_970_013_872_805_6, 0.011_257_411_327_720_69),
             (BandRule::Hermite5, 4) => (2.856_970_013_872_805_6, 0.011_257_411_327_720_69),
             (BandRule::Hermite5, _) => (0.0, 0.533_333_333_333_333_3),
-            (BandRule::Extent, _) if i < GL_N => (GL_XI[i], GL_WS[i]),
             (BandRule::Extent, _) => (0.0, 0.0),
             (BandRule::Single, _) => (0.0, 1.0),
         }
@@ -329,10 +339,12 @@ pub struct Across {
 }
 
 /// Half-width (standard deviations) of the band range the extent rule integrates over: the
-/// Gaussian beyond holds 6.8e-6 of its mass, and the 20-point rule integrates the bare
-/// Gaussian over any sub-range of ±4.5 to 8.8e-6 (±7 would cost 3.3e-3: its nodes crowd
-/// at the ends, away from the peak).
+/// Gaussian beyond holds 6.8e-6 of its mass.
 const EXTENT_SDS: f32 = 4.5;
+/// Widest panel of the extent rule (standard deviations): the 8-point rule in `1 − cos t`
+/// integrates the bare Gaussian over any such panel to 9e-5 of its total mass, and each
+/// panel is rescaled by the exact Gaussian mass (erf), which removes even that.
+const EXTENT_PANEL_SDS: f32 = 3.0;
 /// `1/√(2π)`.
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_28;
 
@@ -378,6 +390,104 @@ pub fn across_integral(a: &Across, q0: f32, q1: f32) -> f32 {
     }
 }
 
+/// `∫ |M − P|² dξ₂` over the lit part of the band at `offset` (direction cosines) from the
+/// central band ξ₁ = 0; 0 where that band misses the light.
+#[inline]
+fn chord_power(
+    region: &LightRegion,
+    frame: &SegmentFrame,
+    wo: Vec3,
+    across: &Across,
+    offset: f32,
+) -> f32 {
+    let mut part = 0.0;
+    if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, offset) {
+        let lambda = across.lambda;
+        lit_intervals(region, &band, |s0, s1| {
+            part += across_integral(across, band.xi2(s0, lambda), band.xi2(s1, lambda));
+        });
+    }
+    part
+}
+
+/// The extent rule's `∫ chord_power(x·sd) φ(x) dx` (φ the standard normal density) over the
+/// light's own range of `x`: the range is cut where the chord has kinks (polygon corners, the
+/// horizon meeting the light's boundary) and into panels at most [`EXTENT_PANEL_SDS`] wide,
+/// and each panel gets the 8-point Gauss–Legendre rule in `1 − cos t`, whose nodes crowd
+/// at both ends where the chord opens like a square root or kinks.
+fn extent_power(
+    region: &LightRegion,
+    frame: &SegmentFrame,
+    wo: Vec3,
+    across: &Across,
+    sd: f32,
+) -> f32 {
+    let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
+    let t3 = Vec3::new(frame.tangent.x, frame.tangent.y, 0.0);
+    let (lo, hi) = region.dot_range(t3);
+    let x_lo = math::max((lo + wo_t) / sd, -EXTENT_SDS);
+    let x_hi = math::min((hi + wo_t) / sd, EXTENT_SDS);
+    if !(x_hi > x_lo) {
+        return 0.0;
+    }
+    let mut kinks = Breakpoints::empty();
+    region.kinks(t3, &mut kinks);
+    let mut cuts = Breakpoints::empty();
+    cuts.push(x_lo);
+    cuts.push(x_hi);
+    let mut i = 0;
+    while i < kinks.len && i < MAX_BREAKPOINTS {
+        let x = (kinks.s[i] + wo_t) / sd;
+        if x > x_lo && x < x_hi {
+            cuts.push(x);
+        }
+        i += 1;
+    }
+    cuts.sort();
+    let mut sum = 0.0;
+    let mut c = 0;
+    while c + 1 < cuts.len && c + 1 < MAX_BREAKPOINTS {
+        let (a, b) = (cuts.s[c], cuts.s[c + 1]);
+        let pieces = math::clamp(math::ceil((b - a) / EXTENT_PANEL_SDS), 1.0, 4.0) as u32;
+        let h = (b - a) / pieces as f32;
+        let mut p = 0;
+        while p < pieces {
+            let start = a + p as f32 * h;
+            // Σ w φ(x) g(x), and Σ w φ(x) to rescale by the exact ∫ φ over the panel, which
+            // removes the rule's error on the Gaussian itself.
+            let (mut acc, mut norm) = (0.0, 0.0);
+            let mut k = 0;
+            while k < 8 {
+                // GL node v ∈ (0, 1) mapped by ξ = (1 − cos πv)/2.
+                let j = if k < 4 { 3 - k } else { k - 4 };
+                let v = if k < 4 {
+                    0.5 * (1.0 - GL8_X[j])
+                } else {
+                    0.5 * (1.0 + GL8_X[j])
+                };
+                let (sin_pv, cos_pv) = math::sin_cos(math::PI * v);
+                let x = start + h * 0.5 * (1.0 - cos_pv);
+                let w = 0.5 * GL8_W[j] * (0.5 * math::PI * sin_pv) * h;
+                let weight = w * math::exp(-0.5 * x * x) * FRAC_1_SQRT_TAU;
+                if weight > 0.0 {
+                    norm += weight;
+                    acc += weight * chord_power(region, frame, wo, across, x * sd);
+                }
+                k += 1;
+            }
+            if norm > 0.0 {
+                let exact = 0.5
+                    * (math::erf((start + h) * core::f32::consts::FRAC_1_SQRT_2)
+                        - math::erf(start * core::f32::consts::FRAC_1_SQRT_2));
+                sum += acc * (exact / norm);
+            }
+            p += 1;
+        }
+        c += 1;
+    }
+    sum
+}
+
 /// One scratch's `∫ |S_k|² dξ₁ dξ₂` over the lit band (µm²).
 pub fn scratch_band_power(
     region: &LightRegion,
@@ -404,36 +514,18 @@ pub fn scratch_band_power(
     };
     // Standard deviation of the band in direction cosines: λ/(2√2 πσ).
     let sd = lambda / (2.0 * math::SQRT_2 * math::PI * sigma);
-    // Extent rule: the light's range of x = offset/sd, where offset = wi·t₃ + wo·t.
-    let (x_lo, x_len) = if rule == BandRule::Extent {
-        let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
-        let (lo, hi) = region.dot_range(Vec3::new(frame.tangent.x, frame.tangent.y, 0.0));
-        let x_lo = math::max((lo + wo_t) / sd, -EXTENT_SDS);
-        let x_hi = math::min((hi + wo_t) / sd, EXTENT_SDS);
-        if !(x_hi > x_lo) {
-            return 0.0;
-        }
-        (x_lo, x_hi - x_lo)
+    let sum = if rule == BandRule::Extent {
+        extent_power(region, &frame, wo, &across, sd)
     } else {
-        (0.0, 0.0)
+        let mut sum = 0.0;
+        let mut i = 0;
+        while i < rule.count() {
+            let (x, w) = rule.node(i);
+            sum += w * chord_power(region, &frame, wo, &across, x * sd);
+            i += 1;
+        }
+        sum
     };
-    let mut sum = 0.0;
-    let mut i = 0;
-    while i < rule.count() {
-        let (mut x, mut w) = rule.node(i);
-        if rule == BandRule::Extent {
-            x = x_lo + x_len * x;
-            w *= x_len * math::exp(-0.5 * x * x) * FRAC_1_SQRT_TAU;
-        }
-        if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, x * sd) {
-            let mut part = 0.0;
-            lit_intervals(region, &band, |s0, s1| {
-                part += across_integral(&across, band.xi2(s0, lambda), band.xi2(s1, lambda));
-            });
-            sum += w * part;
-        }
-        i += 1;
-    }
     sum * along_power(eta, &frame, x0, sigma)
 }
 

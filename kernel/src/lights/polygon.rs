@@ -147,6 +147,27 @@ impl SphericalPolygon {
         range
     }
 
+    /// Adds `u · w` at the vertices above the horizon and where edges cross the horizon.
+    pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
+        let mut m = 0;
+        while m < self.count && m < MAX_VERTICES {
+            let next = if m + 1 < self.count { m + 1 } else { 0 };
+            let a = self.vertex[m];
+            if a.z >= 0.0 {
+                out.push(u.dot(a));
+            }
+            if next < MAX_VERTICES {
+                let b = self.vertex[next];
+                if (a.z > 0.0 && b.z < 0.0) || (a.z < 0.0 && b.z > 0.0) {
+                    // On the great circle through a and b, between them, at z = 0.
+                    let p = a * math::abs(b.z) + b * math::abs(a.z);
+                    out.push(u.dot(p.normalize_or_zero()));
+                }
+            }
+            m += 1;
+        }
+    }
+
     /// Adds where the band crosses the great circles of the polygon's edges.
     pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
         let mut m = 0;

@@ -102,6 +102,23 @@ impl SphereCap {
         (math::cos(far), math::cos(near))
     }
 
+    /// Adds `u · w` at the (up to two) points where the cone's boundary meets the horizon.
+    pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
+        let r = math::sqrt(self.axis.x * self.axis.x + self.axis.y * self.axis.y);
+        let c = math::cos(self.alpha) / r;
+        if !(self.alpha < math::PI && r > 0.0 && math::abs(c) <= 1.0) {
+            return;
+        }
+        let phi = math::atan2(self.axis.y, self.axis.x);
+        let delta = math::acos(c);
+        let mut k = 0;
+        while k < 2 {
+            let (sin_p, cos_p) = math::sin_cos(if k == 0 { phi + delta } else { phi - delta });
+            out.push(u.x * cos_p + u.y * sin_p);
+            k += 1;
+        }
+    }
+
     /// Adds where the band crosses the cone boundary (at most two points).
     pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
         if self.alpha >= math::PI {

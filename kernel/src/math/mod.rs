@@ -124,6 +124,12 @@ pub fn floor(x: f32) -> f32 {
     libm::floorf(x)
 }
 
+/// Smallest integer not less than `x`.
+#[inline]
+pub fn ceil(x: f32) -> f32 {
+    libm::ceilf(x)
+}
+
 /// `x` clamped to `[lo, hi]`; NaN maps to `lo`.
 #[inline]
 pub fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
