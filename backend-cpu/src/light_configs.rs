@@ -218,3 +218,46 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
         },
     })
 }
+
+/// Distance between the cells of a [`grid_batch`] (µm): the sweep's scratches are 300 µm
+/// long within 10 µm of their cell's centre, σ = 10 µm.
+pub const GRID_CELL_UM: f32 = 1000.0;
+/// Cells per row of a [`grid_batch`].
+const GRID_ROW: usize = 100;
+
+/// `count` sweep configurations as one batch over one scratch set: configuration `k`'s
+/// scratch and shading point move to a cell of their own on a grid ([`GRID_CELL_UM`]
+/// apart, beyond the 6σ lookup radius of every other cell), so a single scratch lookup
+/// serves every query and each query sees exactly its own scratch. Odd configurations use
+/// the V-groove (triangle) profile. Returns the options of the first configuration (the
+/// sweep's are all alike), the scratches and the queries.
+pub fn grid_batch(
+    rng: &mut Rng,
+    ranges: &SweepRanges,
+    eta: u32,
+    count: usize,
+) -> (LightParams, Vec<Scratch>, Vec<LightQuery>) {
+    let mut params = LightParams::default();
+    let mut scratches = Vec::with_capacity(count);
+    let mut queries = Vec::with_capacity(count);
+    for k in 0..count {
+        let c = random_case(rng, ranges, eta);
+        let offset = [
+            (k % GRID_ROW) as f32 * GRID_CELL_UM,
+            (k / GRID_ROW) as f32 * GRID_CELL_UM,
+        ];
+        let mut s = c.scratch;
+        s.center = [s.center[0] + offset[0], s.center[1] + offset[1]];
+        if k % 2 == 1 {
+            s.profile = Profile::Triangle as u32;
+        }
+        let mut q = c.query;
+        q.x = [q.x[0] + offset[0], q.x[1] + offset[1]];
+        scratches.push(s);
+        queries.push(q);
+        if k == 0 {
+            params = c.params;
+        }
+    }
+    (params, scratches, queries)
+}

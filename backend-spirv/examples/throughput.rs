@@ -1,19 +1,26 @@
-//! Table throughput: lavapipe (or the adapter `SCRATCHWAVE_ADAPTER` picks) against the CPU
-//! backend's scalar and simd+rayon paths, for N queries (default 10⁶) of each model.
+//! Throughput: lavapipe (or the adapter `SCRATCHWAVE_ADAPTER` picks) against the CPU
+//! backend's scalar and simd+rayon paths, for N queries (default 10⁶) of each table model,
+//! N of the GHS model, and N/10 area-light queries (the light sweep's configurations laid
+//! out by `light_configs::grid_batch`) with Eq. 27 and with the extent rule.
 //!
 //! `cargo run --release -p scratchwave-spirv --example throughput [-- N SCRATCHES]`
 //!
-//! "scan" is the CPU running what the GPU runs for now (the scratches in slot order instead
-//! of the BVH traversal, see the shader crate), to separate the lookup from the device.
-//! GPU times are split as the dispatch API reports them (pipeline compilation excluded by
-//! a warm-up run); "incl." adds upload and readback. The scratch lookup (BVH) is built once
-//! on the CPU and shared by both sides, so neither side's time includes it.
+//! "scan" (tables only) is the CPU visiting the scratches in slot order instead of
+//! traversing the BVH, to separate the lookup from the device. GPU times are split as the
+//! dispatch API reports them (pipeline compilation excluded by a warm-up run); "incl." adds
+//! upload and readback. The scratch lookup (BVH) is built once on the CPU and shared by both
+//! sides, so neither side's time includes it.
 
+use scratchwave_cpu::light_configs::{Rng, SweepRanges, grid_batch};
 use scratchwave_cpu::parallel::map;
 use scratchwave_cpu::{Backend, ScratchLookup};
+use scratchwave_kernel::ghs::presets;
+use scratchwave_kernel::lights::{LightParams, light_integral};
 use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
-use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery, evaluate};
-use scratchwave_spirv::Gpu;
+use scratchwave_kernel::table::{
+    FresnelAngle, Material, Model, TableParams, TableQuery, evaluate, evaluate_ghs,
+};
+use scratchwave_spirv::{Dispatched, Gpu};
 use std::time::{Duration, Instant};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -40,38 +47,86 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let lookup = ScratchLookup::new(&scratches, params.sigma_um);
         let set = lookup.set();
-        let timed = |backend| {
-            let start = Instant::now();
-            let out = map(backend, &queries, |q| evaluate(&params, q, &set));
-            (out, start.elapsed())
-        };
-        let (_, scalar) = timed(Backend::Scalar);
-        let (cpu, simd) = timed(Backend::Simd);
-        // What the GPU runs for now: a scan of the scratches in slot order.
+        // The same BVH-free scan on the CPU, to separate the lookup from the device.
         let scan_set = ScratchSlice {
             scratches: lookup.scratches(),
         };
         let start = Instant::now();
         let _ = map(Backend::Simd, &queries, |q| evaluate(&params, q, &scan_set));
-        let simd_scan = start.elapsed();
-        gpu.evaluate_table_with(&params, &lookup, &queries[..1024.min(n)])?; // compile the pipeline
-        let run = gpu.evaluate_table_with(&params, &lookup, &queries)?;
-        let t = run.timings;
-        let rate = |d: Duration| n as f64 / d.as_secs_f64() / 1e6;
-        let ms = |d: Duration| d.as_secs_f64() * 1e3;
-        println!(
-            "| {model:?} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} | {:.1} | {:.2e} |",
-            rate(scalar),
-            rate(simd),
-            rate(simd_scan),
-            rate(t.dispatch),
-            rate(t.total()),
-            ms(t.upload),
-            ms(t.dispatch),
-            ms(t.readback),
-            max_rel_diff(&cpu, &run.output),
-        );
+        let scan = start.elapsed();
+        row(
+            &format!("{model:?}"),
+            queries.len(),
+            Some(scan),
+            |b| map(b, &queries, |q| evaluate(&params, q, &set)),
+            |m| gpu.evaluate_table_with(&params, &lookup, &queries[..m]),
+        )?;
     }
+    let ghs = presets::channel(presets::ROUGH_METAL, &presets::GOLD, 1);
+    row(
+        "ghs (rough gold)",
+        queries.len(),
+        None,
+        |b| map(b, &queries, |q| evaluate_ghs(&ghs, q)),
+        |m| gpu.evaluate_ghs_table(&ghs, &queries[..m]),
+    )?;
+    let (light_params, light_scratches, light_queries) = grid_batch(
+        &mut Rng::new(3),
+        &SweepRanges::default(),
+        1,
+        (n / 10).max(1),
+    );
+    let light_lookup = ScratchLookup::new(&light_scratches, light_params.sigma_um);
+    let light_set = light_lookup.set();
+    for (label, bands) in [("light, Eq. 27", 1), ("light, extent rule", 20)] {
+        let p = LightParams {
+            bands,
+            ..light_params
+        };
+        row(
+            label,
+            light_queries.len(),
+            None,
+            |b| map(b, &light_queries, |q| light_integral(&p, q, &light_set)),
+            |m| gpu.light_table(&p, &light_lookup, &light_queries[..m]),
+        )?;
+    }
+    Ok(())
+}
+
+/// Times `cpu` on both CPU paths and `gpu` (after a warm-up dispatch that compiles the
+/// pipeline) and prints one table row.
+fn row(
+    label: &str,
+    n: usize,
+    scan: Option<Duration>,
+    cpu: impl Fn(Backend) -> Vec<f32>,
+    gpu: impl Fn(usize) -> scratchwave_spirv::Result<Dispatched<f32>>,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let timed = |backend| {
+        let start = Instant::now();
+        let out = cpu(backend);
+        (out, start.elapsed())
+    };
+    let (_, scalar) = timed(Backend::Scalar);
+    let (reference, simd) = timed(Backend::Simd);
+    gpu(1024.min(n))?;
+    let run = gpu(n)?;
+    let t = run.timings;
+    let rate = |d: Duration| n as f64 / d.as_secs_f64() / 1e6;
+    let ms = |d: Duration| d.as_secs_f64() * 1e3;
+    println!(
+        "| {label} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.1} | {:.1} | {:.1} | {:.2e} |",
+        rate(scalar),
+        rate(simd),
+        scan.map_or("—".to_string(), |d| format!("{:.3}", rate(d))),
+        rate(t.dispatch),
+        rate(t.total()),
+        ms(t.upload),
+        ms(t.dispatch),
+        ms(t.readback),
+        max_rel_diff(&reference, &run.output),
+    );
     Ok(())
 }
 
