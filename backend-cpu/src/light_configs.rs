@@ -6,8 +6,11 @@
 //! `(wi_p + wo)_xy · t = 0`. Light sizes, distances, elevations (down to partly below the
 //! horizon) and scratch orientations are drawn from the ranges in [`SweepRanges`].
 
-use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, MAX_VERTICES};
-use scratchwave_kernel::scratch::{Profile, Scratch};
+use crate::vec64::{V3, cross, norm};
+use scratchwave_kernel::lights::{
+    Cone, Light, LightParams, LightQuery, MAX_VERTICES, SiMode, light_integral,
+};
+use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
 use scratchwave_kernel::table::Material;
 
 /// The sweeps' generator (seeded, so every sweep replays exactly).
@@ -39,6 +42,22 @@ pub struct LightCase {
     pub meta: CaseMeta,
 }
 
+impl LightCase {
+    /// The kernel's closed form for this configuration with Si method `si` and band rule
+    /// `bands` (see `LightParams::bands`).
+    pub fn closed_form(&self, si: SiMode, bands: u32) -> f32 {
+        let params = LightParams {
+            si_mode: si as u32,
+            bands,
+            ..self.params
+        };
+        let set = ScratchSlice {
+            scratches: std::slice::from_ref(&self.scratch),
+        };
+        light_integral(&params, &self.query, &set)
+    }
+}
+
 /// Ranges of a sweep.
 #[derive(Clone, Copy, Debug)]
 pub struct SweepRanges {
@@ -60,17 +79,17 @@ impl Default for SweepRanges {
     }
 }
 
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    [v[0] / l, v[1] / l, v[2] / l]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+/// The sweep's basis about a light direction (`e1` from `dir × ẑ`, or `dir × x̂` near the
+/// pole). It differs from [`crate::vec64::basis`] only in the helper axis; it is kept so the
+/// seeded sweeps replay the configurations their published numbers came from.
+fn sweep_basis(dir: V3) -> (V3, V3) {
+    let helper = if dir[2].abs() < 0.9 {
+        [0.0, 0.0, 1.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    let e1 = norm(cross(dir, helper));
+    (e1, cross(dir, e1))
 }
 
 /// Draws one configuration whose band crosses the light.
@@ -98,13 +117,7 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
         // A radially jittered n-gon, tilted up to 50° away from facing the point.
         let n = 3 + (rng.next_f64() * 6.0) as usize;
         let r = dist * alpha.tan();
-        let helper = if dir[2].abs() < 0.9 {
-            [0.0, 0.0, 1.0]
-        } else {
-            [1.0, 0.0, 0.0]
-        };
-        let e1 = unit(cross(dir, helper));
-        let e2 = cross(dir, e1);
+        let (e1, e2) = sweep_basis(dir);
         let tilt = rng.range_f64(0.0, 0.87);
         let (st, ct) = tilt.sin_cos();
         let n_axis = [
@@ -112,7 +125,7 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
             ct * dir[1] + st * e1[1],
             ct * dir[2] + st * e1[2],
         ];
-        let a1 = unit(cross(n_axis, e2));
+        let a1 = norm(cross(n_axis, e2));
         let rot = rng.range_f64(0.0, std::f64::consts::TAU);
         let mut vs = Vec::new();
         for k in 0..n {
@@ -139,7 +152,7 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
             center[2] + x * (a[2] - center[2]) + y * (b[2] - center[2]),
         ];
         debug_assert!(n <= MAX_VERTICES);
-        (Light::polygon(&vs), n, unit(p))
+        (Light::polygon(&vs), n, norm(p))
     } else {
         let cone = if rng.next_f64() < 0.5 {
             Cone::Asin
@@ -151,13 +164,7 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
             Cone::Atan => dist * alpha.tan(),
         };
         // A direction inside the cone.
-        let helper = if dir[2].abs() < 0.9 {
-            [0.0, 0.0, 1.0]
-        } else {
-            [1.0, 0.0, 0.0]
-        };
-        let e1 = unit(cross(dir, helper));
-        let e2 = cross(dir, e1);
+        let (e1, e2) = sweep_basis(dir);
         let th = alpha * rng.next_f64().sqrt();
         let ph = rng.range_f64(0.0, std::f64::consts::TAU);
         let (st, ct) = th.sin_cos();

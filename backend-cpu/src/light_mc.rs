@@ -7,10 +7,10 @@
 
 use crate::light_configs::Rng;
 use scratchwave_kernel::lights::{Cone, LIGHT_POLYGON, LightParams, LightQuery};
-use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
-use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
+use scratchwave_kernel::scratch::Scratch;
 
-use crate::vec64::{V3, cross, dot, norm, sub};
+use crate::light_reference::scratch_brdf;
+use crate::vec64::{V3, basis, cross, dot, norm, sub};
 
 /// `N`-sample light-sampling estimate (0 for degenerate lights).
 pub fn light_mc(
@@ -20,29 +20,12 @@ pub fn light_mc(
     n: usize,
     rng: &mut Rng,
 ) -> f64 {
-    let tp = TableParams {
-        model: Model::Velinov as u32,
-        eta: params.eta,
-        depth_term: params.depth_term,
-        sigma_um: params.sigma_um,
-        ..TableParams::default()
-    };
-    let set = ScratchSlice {
-        scratches: std::slice::from_ref(scratch),
-    };
+    let brdf = scratch_brdf(params, q, scratch);
     let f = |wi: V3| -> f64 {
         if wi[2] <= 0.0 {
             return 0.0;
         }
-        let tq = TableQuery {
-            wi: [wi[0] as f32, wi[1] as f32, wi[2] as f32],
-            lambda_nm: q.lambda_nm,
-            wo: q.wo,
-            x: q.x,
-            material: q.material,
-            ..TableQuery::default()
-        };
-        evaluate(&tp, &tq, &set) as f64 * wi[2]
+        brdf(wi) * wi[2]
     };
     let l = &q.light;
     let mut sum = 0.0;
@@ -118,13 +101,7 @@ pub fn light_mc(
             Cone::Atan => r.atan2(d),
         };
         let axis = norm(cen);
-        let helper = if axis[0].abs() < 0.9 {
-            [1.0, 0.0, 0.0]
-        } else {
-            [0.0, 1.0, 0.0]
-        };
-        let e1 = norm(cross(axis, helper));
-        let e2 = cross(axis, e1);
+        let (e1, e2) = basis(axis);
         let cos_a = alpha.cos();
         let solid = std::f64::consts::TAU * (1.0 - cos_a);
         for _ in 0..n {

@@ -31,7 +31,7 @@ pub struct Reference {
     pub evals: u64,
 }
 
-use crate::vec64::{V3, cross, dot, norm};
+use crate::vec64::{V3, basis, cross, dot, norm};
 
 /// The light's solid angle in `f64`, with an inside test only.
 #[derive(Clone, Debug)]
@@ -117,13 +117,7 @@ impl RefRegion {
         match self {
             RefRegion::Cone { axis, alpha } => {
                 let a = *axis;
-                let helper = if a[0].abs() < 0.9 {
-                    [1.0, 0.0, 0.0]
-                } else {
-                    [0.0, 1.0, 0.0]
-                };
-                let e1 = norm(cross(a, helper));
-                let e2 = cross(a, e1);
+                let (e1, e2) = basis(a);
                 for i in 0..=64 {
                     let th = alpha * i as f64 / 64.0;
                     for j in 0..128 {
@@ -290,6 +284,37 @@ pub fn light_reference(
     light_reference_budget(params, q, scratch, rel_tol, 4000)
 }
 
+/// The kernel's incoherent (velinov) table BRDF of one scratch, in 1/sr without the cosine,
+/// for the view, wavelength, shading point and material of `q`, as a function of the
+/// incident direction: the integrand of the reference and of Monte Carlo light sampling.
+pub fn scratch_brdf<'a>(
+    params: &LightParams,
+    q: &'a LightQuery,
+    scratch: &'a Scratch,
+) -> impl Fn(V3) -> f64 + 'a {
+    let tp = TableParams {
+        model: Model::Velinov as u32,
+        eta: params.eta,
+        depth_term: params.depth_term,
+        sigma_um: params.sigma_um,
+        ..TableParams::default()
+    };
+    move |wi: V3| {
+        let tq = TableQuery {
+            wi: [wi[0] as f32, wi[1] as f32, wi[2] as f32],
+            lambda_nm: q.lambda_nm,
+            wo: q.wo,
+            x: q.x,
+            material: q.material,
+            ..TableQuery::default()
+        };
+        let set = ScratchSlice {
+            scratches: std::slice::from_ref(scratch),
+        };
+        evaluate(&tp, &tq, &set) as f64
+    }
+}
+
 /// [`light_reference`] with at most `max_panels` panels per adaptive integral (inner and
 /// outer); when the budget ends first, `err` says how far the tolerance was missed.
 pub fn light_reference_budget(
@@ -312,17 +337,7 @@ pub fn light_reference_budget(
     }
     let t = [dx / tl, dy / tl];
     let b = [-t[1], t[0]];
-    let tp = TableParams {
-        model: Model::Velinov as u32,
-        eta: params.eta,
-        depth_term: params.depth_term,
-        base_gaussian: 0,
-        sigma_um: params.sigma_um,
-        ..TableParams::default()
-    };
-    let set = ScratchSlice {
-        scratches: std::slice::from_ref(scratch),
-    };
+    let brdf = scratch_brdf(params, q, scratch);
     let evals = std::cell::Cell::new(0u64);
     let wi_of = |u1: f64, u2: f64| -> Option<V3> {
         let x = u1 * t[0] + u2 * b[0] - wo[0];
@@ -332,15 +347,7 @@ pub fn light_reference_budget(
     };
     let fr = |wi: V3| -> f64 {
         evals.set(evals.get() + 1);
-        let tq = TableQuery {
-            wi: [wi[0] as f32, wi[1] as f32, wi[2] as f32],
-            lambda_nm: q.lambda_nm,
-            wo: q.wo,
-            x: q.x,
-            material: q.material,
-            ..TableQuery::default()
-        };
-        evaluate(&tp, &tq, &set) as f64
+        brdf(wi)
     };
     let f = |u1: f64, u2: f64| -> f64 {
         match wi_of(u1, u2) {

@@ -32,3 +32,15 @@ pub fn norm(a: V3) -> V3 {
         [0.0; 3]
     }
 }
+
+/// Two unit vectors completing the unit `a` to a right-handed orthonormal basis
+/// `(e1, e2, a)` (`e1` from `a × x̂`, or `a × ŷ` when `a` is near the x axis).
+pub fn basis(a: V3) -> (V3, V3) {
+    let helper = if a[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let e1 = norm(cross(a, helper));
+    (e1, cross(a, e1))
+}

@@ -14,20 +14,10 @@
 use scratchwave_cpu::light_configs::{LightCase, Rng, SweepRanges, random_case};
 use scratchwave_cpu::light_mc::light_mc;
 use scratchwave_cpu::light_reference::{light_reference, light_reference_budget};
-use scratchwave_kernel::lights::{Cone, Light, LightQuery, light_integral};
-use scratchwave_kernel::scratch::ScratchSlice;
+use scratchwave_kernel::lights::{Cone, Light, LightQuery, SiMode};
 
-fn closed(c: &LightCase, bands: u32, si: u32) -> f64 {
-    let mut p = c.params;
-    p.bands = bands;
-    p.si_mode = si;
-    light_integral(
-        &p,
-        &c.query,
-        &ScratchSlice {
-            scratches: std::slice::from_ref(&c.scratch),
-        },
-    ) as f64
+fn closed(c: &LightCase, bands: u32, si: SiMode) -> f64 {
+    f64::from(c.closed_form(si, bands))
 }
 
 /// `n` converged reference cases of a seeded sweep (cases the reference cannot settle within
@@ -52,7 +42,7 @@ fn sweep(seed: u64, ranges: SweepRanges, n: usize, eta: u32) -> Vec<(LightCase, 
 fn check(cases: &[(LightCase, f64)], bands: u32, tol: f64) {
     let mut errs: Vec<f64> = Vec::new();
     for (c, r) in cases {
-        let e = closed(c, bands, 0) / r - 1.0;
+        let e = closed(c, bands, SiMode::Exact) / r - 1.0;
         assert!(
             e.abs() <= tol,
             "bands {bands}: rel error {e:+.3e} for {:?}",

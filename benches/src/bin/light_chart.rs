@@ -18,8 +18,7 @@ use scratchwave_benches::svg::{Series, loglog};
 use scratchwave_cpu::light_configs::{LightCase, Rng, SweepRanges, random_case};
 use scratchwave_cpu::light_mc::light_mc;
 use scratchwave_cpu::light_reference::light_reference_budget;
-use scratchwave_kernel::lights::{SiMode, light_integral};
-use scratchwave_kernel::scratch::ScratchSlice;
+use scratchwave_kernel::lights::SiMode;
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -39,16 +38,7 @@ const EXTENT: usize = 7;
 const MC_N: [usize; 7] = [16, 64, 256, 1024, 4096, 16384, 65536];
 
 fn closed(c: &LightCase, si: SiMode, bands: u32) -> f64 {
-    let mut p = c.params;
-    p.si_mode = si as u32;
-    p.bands = bands;
-    light_integral(
-        &p,
-        &c.query,
-        &ScratchSlice {
-            scratches: std::slice::from_ref(&c.scratch),
-        },
-    ) as f64
+    f64::from(c.closed_form(si, bands))
 }
 
 struct Stats {
