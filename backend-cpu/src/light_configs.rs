@@ -6,7 +6,7 @@
 //! `(wi_p + wo)_xy · t = 0`. Light sizes, distances, elevations (down to partly below the
 //! horizon) and scratch orientations are drawn from the ranges in [`SweepRanges`].
 
-use crate::vec64::{V3, cross, norm};
+use crate::vec64::{V3, basis_from, cross, norm};
 use scratchwave_kernel::lights::{
     Cone, Light, LightParams, LightQuery, MAX_VERTICES, SiMode, light_integral,
 };
@@ -88,8 +88,7 @@ fn sweep_basis(dir: V3) -> (V3, V3) {
     } else {
         [1.0, 0.0, 0.0]
     };
-    let e1 = norm(cross(dir, helper));
-    (e1, cross(dir, e1))
+    basis_from(dir, helper)
 }
 
 /// Draws one configuration whose band crosses the light.

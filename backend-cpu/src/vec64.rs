@@ -41,6 +41,12 @@ pub fn basis(a: V3) -> (V3, V3) {
     } else {
         [0.0, 1.0, 0.0]
     };
+    basis_from(a, helper)
+}
+
+/// The basis `(e1, e2)` about the unit `a` with `e1 ∥ a × helper` (`helper` not parallel
+/// to `a`).
+pub fn basis_from(a: V3, helper: V3) -> (V3, V3) {
     let e1 = norm(cross(a, helper));
     (e1, cross(a, e1))
 }
