@@ -212,28 +212,27 @@ pub type LightRow = (f32, f32, f64, f64);
 /// message.
 pub fn light_rows(spec: &LightSpec, backend: &dyn TableBackend) -> Result<Vec<LightRow>, String> {
     // Flatten the fans into one batch; `owner[i]` is the spec query of batch query `i`.
-    let (owner, flat): (Vec<usize>, Vec<LightQuery>) = spec
+    let (owner, queries): (Vec<usize>, Vec<LightQuery>) = spec
         .queries
         .iter()
         .enumerate()
         .flat_map(|(i, parts)| parts.iter().map(move |q| (i, *q)))
         .unzip();
-    let closed = |si: SiMode| -> Result<Vec<f32>, String> {
-        let batch = LightBatch {
-            params: LightParams {
-                si_mode: si as u32,
-                ..spec.params
-            },
-            scratches: vec![spec.scratch],
-            queries: flat.clone(),
-        };
+    let mut batch = LightBatch {
+        params: spec.params,
+        scratches: vec![spec.scratch],
+        queries,
+    };
+    let mut closed = |si: SiMode| -> Result<Vec<f32>, String> {
+        batch.params.si_mode = si as u32;
         let mut sums = vec![0.0f32; spec.queries.len()];
         for (i, v) in owner.iter().zip(backend.evaluate_light(&batch)?) {
             sums[*i] += v;
         }
         Ok(sums)
     };
-    let (exact, approx) = (closed(SiMode::Exact)?, closed(SiMode::Velinov)?);
+    let exact = closed(SiMode::Exact)?;
+    let approx = closed(SiMode::Velinov)?;
     let reference = map(Backend::Simd, &spec.queries, |parts: &Vec<LightQuery>| {
         parts.iter().fold((0.0, 0.0), |(v, e), q| {
             let r = light_reference(&spec.params, q, &spec.scratch, spec.reference_rel_tol);
