@@ -411,6 +411,26 @@ fn chord_power(
     part
 }
 
+/// `Σ w_k chord_power(x_k·sd)` over the fixed nodes of `rule` (single band or Gauss–Hermite).
+#[inline]
+fn fixed_rule_power(
+    rule: BandRule,
+    region: &LightRegion,
+    frame: &SegmentFrame,
+    wo: Vec3,
+    across: &Across,
+    sd: f32,
+) -> f32 {
+    let mut sum = 0.0;
+    let mut i = 0;
+    while i < rule.count() {
+        let (x, w) = rule.node(i);
+        sum += w * chord_power(region, frame, wo, across, x * sd);
+        i += 1;
+    }
+    sum
+}
+
 /// The extent rule's `∫ chord_power(x·sd) φ(x) dx` (φ the standard normal density) over the
 /// light's own range of `x`: the range is cut where the chord has kinks (polygon corners, the
 /// horizon meeting the light's boundary) and into panels at most [`EXTENT_PANEL_SDS`] wide,
@@ -448,15 +468,7 @@ fn extent_power(
     // The light covers the whole window with no kink in it: the chord is smooth across the
     // band, and 5-point Gauss–Hermite is exact to degree 9 at a fifth of the cost.
     if cuts.len == 2 && x_lo <= -EXTENT_SDS && x_hi >= EXTENT_SDS {
-        let rule = BandRule::Hermite5;
-        let mut sum = 0.0;
-        let mut i = 0;
-        while i < rule.count() {
-            let (x, w) = rule.node(i);
-            sum += w * chord_power(region, frame, wo, across, x * sd);
-            i += 1;
-        }
-        return sum;
+        return fixed_rule_power(BandRule::Hermite5, region, frame, wo, across, sd);
     }
     let mut sum = 0.0;
     let mut c = 0;
@@ -531,14 +543,7 @@ pub fn scratch_band_power(
     let sum = if rule == BandRule::Extent {
         extent_power(region, &frame, wo, &across, sd)
     } else {
-        let mut sum = 0.0;
-        let mut i = 0;
-        while i < rule.count() {
-            let (x, w) = rule.node(i);
-            sum += w * chord_power(region, &frame, wo, &across, x * sd);
-            i += 1;
-        }
-        sum
+        fixed_rule_power(rule, region, &frame, wo, &across, sd)
     };
     sum * along_power(eta, &frame, x0, sigma)
 }
