@@ -8,7 +8,11 @@
 //! * bounded functions (sin, cos, sinc, Si, erf, Faddeeva `w`, all |f| ≤ ~2): 1e-6
 //!   absolute, 16× the lavapipe maximum measured (6e-8 … 1.7e-7) so a driver or
 //!   toolchain regression shows, yet far inside the 1e-4 the tables need;
-//! * `sqrt`: 2 ULP (lavapipe measured: bit-identical).
+//! * `sqrt`: 2 ULP (lavapipe measured: bit-identical);
+//! * `sin_cos_pi` (the kernel's own, exact reduction, no `GLSL.std.450`): 1 ULP, since
+//!   contraction can only move the polynomial's last bit (measured: 97 % bit-identical);
+//! * division: bit-identical on lavapipe (Vulkan allows 2.5 ULP; the phases' accuracy
+//!   analysis in ARCHITECTURE.md assumes lavapipe's correctly rounded `OpFDiv`).
 //!
 //! The own approximations (`Portable*`) are **not** bit-identical on lavapipe (the study in
 //! `examples/math_seam.rs` and ARCHITECTURE.md: spirv-opt fuses `a*b+c` into `Fma`, and
@@ -109,6 +113,32 @@ fn sqrt_agrees_to_2_ulp() {
             c[0],
             g[0]
         );
+    }
+}
+
+#[test]
+fn sin_cos_pi_agrees_to_1_ulp_and_division_exactly() {
+    let Some(gpu) = lavapipe() else { return };
+    // Many turns, and the exact half-integers where one of the two is ±0 or ±1.
+    let mut args = linspace(-300.0, 300.0, 100_003);
+    args.extend((-64..=64).map(|k| [k as f32 * 0.5, 0.0]));
+    let (args, cpu, gpu_out) = both(&gpu, MathFunction::SinCosPi, args);
+    for ((arg, c), g) in args.iter().zip(&cpu).zip(&gpu_out) {
+        let close = |a: f32, b: f32| ulps(a, b) <= 1 || (a == 0.0 && b == 0.0);
+        assert!(
+            close(c[0], g[0]) && close(c[1], g[1]),
+            "sin_cos_pi({}): cpu {c:?} lavapipe {g:?}",
+            arg[0]
+        );
+    }
+    let quotients: Vec<[f32; 2]> = linspace(0.01, 5.0, 100_003)
+        .iter()
+        .enumerate()
+        .map(|(i, x)| [x[0], 0.38 + (i % 997) as f32 * 1.0e-3])
+        .collect();
+    let (args, cpu, gpu_out) = both(&gpu, MathFunction::Div, quotients);
+    for ((arg, c), g) in args.iter().zip(&cpu).zip(&gpu_out) {
+        assert_eq!(c[0].to_bits(), g[0].to_bits(), "{} / {}", arg[0], arg[1]);
     }
 }
 

@@ -176,10 +176,23 @@ pub fn direction(v: [f32; 3]) -> Vec3 {
     }
 }
 
-/// `ξ = (wi + wo)_xy / λ` (1/µm; zero in the mirror direction).
+/// `ξ = (wi + wo)_xy / λ` (1/µm; zero in the mirror direction) from λ in nm.
+///
+/// Written `1000 (wi + wo)_xy / λ_nm`: a division by the run-time `λ_nm`, which every
+/// target rounds correctly. The product `λ_nm · 0.001_f32` would put `0.001_f32`'s 4.7e-8
+/// relative error into every phase of a query with the same sign, an error the coherent sum
+/// does not average out (and spirv-opt rewrites a division by the constant 1000 into that
+/// product).
 #[inline]
-pub fn xi_of(wi: Vec3, wo: Vec3, lambda_um: f32) -> Vec2 {
-    Vec2::new(wi.x + wo.x, wi.y + wo.y) / lambda_um
+pub fn xi_of(wi: Vec3, wo: Vec3, lambda_nm: f32) -> Vec2 {
+    Vec2::new(wi.x + wo.x, wi.y + wo.y) * 1000.0 / lambda_nm
+}
+
+/// The depth phase per µm of groove depth in half-turns, `κ/(πD) = 2γ/λ` (1/µm), from `γ`
+/// and λ in nm, as `2000 γ / λ_nm` (a run-time division; see [`xi_of`]).
+#[inline]
+pub fn depth_half_turns_per_um(gamma: f32, lambda_nm: f32) -> f32 {
+    2000.0 * gamma / lambda_nm
 }
 
 /// Evaluates one query: the BRDF (1/sr, no cosine). Directions below the horizon (or
@@ -192,7 +205,7 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
     if !(wi.z > 0.0 && wo.z > 0.0 && sigma > 0.0 && lambda > 0.0) {
         return 0.0;
     }
-    let xi = xi_of(wi, wo, lambda);
+    let xi = xi_of(wi, wo, q.lambda_nm);
     let model = Model::from_u32(params.model);
     let eta = if model == Model::Velinov {
         EtaMode::from_u32(params.eta)
@@ -202,8 +215,10 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
     let inputs = ResponseInputs {
         x0: Vec2::from_array(q.x),
         xi,
-        gamma: DepthTerm::from_u32(params.depth_term).gamma(wi.z + wo.z),
-        lambda,
+        depth_half_turns_per_um: depth_half_turns_per_um(
+            DepthTerm::from_u32(params.depth_term).gamma(wi.z + wo.z),
+            q.lambda_nm,
+        ),
         sigma,
         eta,
         area_density: model == Model::Velinov && params.base_gaussian == 1,
@@ -213,10 +228,11 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
     let area = math::PI * sigma * sigma;
     let norm = f / (area * lambda * lambda);
     let v = match model {
-        Model::Werner => {
-            (math::C32::new(base_response(xi, sigma), 0.0) - terms.coherent).norm_sqr()
-        }
-        Model::WernerBlended => terms.coherent.norm_sqr(),
+        Model::Werner => terms
+            .coherent
+            .subtracted_from(base_response(xi, sigma))
+            .norm_sqr(),
+        Model::WernerBlended => terms.coherent.total().norm_sqr(),
         Model::Velinov => {
             let base = if params.base_gaussian == 1 {
                 let b = base_response(xi, sigma);

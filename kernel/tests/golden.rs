@@ -276,7 +276,7 @@ fn profile_transforms_match_quadrature() {
         let dm = (f64::from(mask_transform(w, x)) - m.0).abs() + m.1.abs();
         mask.push((dm, cabs(m), allow, label.clone()));
         scratch.push((
-            cdiff(profile_transform(profile, w, d, g, l, x), s),
+            cdiff(profile_transform(profile, w, d, 2.0 * g / l, x), s),
             cabs(s),
             allow,
             label,

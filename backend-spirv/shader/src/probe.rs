@@ -65,11 +65,16 @@ pub enum MathFunction {
     Atan2 = 14,
     /// [`math::ln`].
     Ln = 15,
+    /// [`math::sin_cos_pi`]: `[sin πx, cos πx]`.
+    SinCosPi = 16,
+    /// `arg[0] / arg[1]`: the one arithmetic operation Vulkan does not require to be
+    /// correctly rounded (2.5 ULP), on which the phases' accuracy hangs.
+    Div = 17,
 }
 
 impl MathFunction {
     /// Every function, in id order.
-    pub const ALL: [Self; 16] = [
+    pub const ALL: [Self; 18] = [
         Self::Exp,
         Self::Sin,
         Self::Cos,
@@ -86,6 +91,8 @@ impl MathFunction {
         Self::Atan,
         Self::Atan2,
         Self::Ln,
+        Self::SinCosPi,
+        Self::Div,
     ];
 
     /// The function with this id, if any.
@@ -108,6 +115,8 @@ impl MathFunction {
             13 => Some(Self::Atan),
             14 => Some(Self::Atan2),
             15 => Some(Self::Ln),
+            16 => Some(Self::SinCosPi),
+            17 => Some(Self::Div),
             _ => None,
         }
     }
@@ -137,6 +146,11 @@ impl MathFunction {
             Self::Atan => real(math::atan(x)),
             Self::Atan2 => real(math::atan2(arg[0], arg[1])),
             Self::Ln => real(math::ln(x)),
+            Self::SinCosPi => {
+                let (s, c) = math::sin_cos_pi(x);
+                [s, c]
+            }
+            Self::Div => real(arg[0] / arg[1]),
         }
     }
 }

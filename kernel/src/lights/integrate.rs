@@ -331,8 +331,9 @@ pub struct Across {
     pub width: f32,
     /// Depth D (µm).
     pub depth: f32,
-    /// Effective `γi + γo`.
-    pub gamma: f32,
+    /// Depth phase in half-turns per µm of depth, `2γ/λ` (1/µm; see
+    /// [`crate::table::depth_half_turns_per_um`]).
+    pub depth_half_turns_per_um: f32,
     /// λ (µm).
     pub lambda: f32,
     /// Si method (rectangular groove).
@@ -357,7 +358,8 @@ pub fn across_integral(a: &Across, q0: f32, q1: f32) -> f32 {
     match a.profile {
         Profile::Rect => {
             let depth2 =
-                mask_minus_profile(Profile::Rect, 1.0, a.depth, a.gamma, a.lambda, 0.0).norm_sqr();
+                mask_minus_profile(Profile::Rect, 1.0, a.depth, a.depth_half_turns_per_um, 0.0)
+                    .norm_sqr();
             depth2 * band_integral(a.width, q0, q1, a.si)
         }
         Profile::Triangle => {
@@ -380,7 +382,13 @@ pub fn across_integral(a: &Across, q0: f32, q1: f32) -> f32 {
                     let j = i / 2;
                     let x = if i % 2 == 0 { -GL4_X[j] } else { GL4_X[j] };
                     let q = mid + 0.5 * h * x;
-                    let mp = mask_minus_profile(a.profile, a.width, a.depth, a.gamma, a.lambda, q);
+                    let mp = mask_minus_profile(
+                        a.profile,
+                        a.width,
+                        a.depth,
+                        a.depth_half_turns_per_um,
+                        q,
+                    );
                     acc += GL4_W[j] * mp.norm_sqr();
                     i += 1;
                 }
@@ -522,7 +530,7 @@ pub fn scratch_band_power(
     x0: Vec2,
     eta: EtaMode,
     sigma: f32,
-    gamma: f32,
+    depth_half_turns_per_um: f32,
     lambda: f32,
     si: SiMode,
     rule: BandRule,
@@ -534,7 +542,7 @@ pub fn scratch_band_power(
         profile: Profile::from_u32(scratch.profile),
         width: scratch.width,
         depth: scratch.depth,
-        gamma,
+        depth_half_turns_per_um,
         lambda,
         si,
     };
@@ -563,6 +571,7 @@ pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: 
     };
     let wc = region.center();
     let gamma = DepthTerm::from_u32(params.depth_term).gamma(wc.z + wo.z);
+    let half_turns = crate::table::depth_half_turns_per_um(gamma, q.lambda_nm);
     let eta = EtaMode::from_u32(params.eta);
     let si = SiMode::from_u32(params.si_mode);
     let rule = BandRule::from_u32(params.bands);
@@ -570,7 +579,9 @@ pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: 
     let mut power = 0.0;
     let mut cursor = NearCursor::default();
     while let Some(s) = set.next_near(&mut cursor, x0, CUTOFF_SIGMAS * sigma) {
-        power += scratch_band_power(&region, &s, wo, x0, eta, sigma, gamma, lambda, si, rule);
+        power += scratch_band_power(
+            &region, &s, wo, x0, eta, sigma, half_turns, lambda, si, rule,
+        );
     }
     let f = q.material.reflectance(wc, wo);
     let r = f * power / (math::PI * sigma * sigma);

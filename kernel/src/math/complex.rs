@@ -13,16 +13,6 @@ pub fn cis(theta: f32) -> C32 {
     C32::new(c, s)
 }
 
-/// `1 − e^{iφ}`, evaluated as `−2i sin(φ/2) e^{iφ/2}` so it keeps full relative accuracy for
-/// small `φ` (a shallow groove's depth term).
-#[inline]
-pub fn one_minus_cis(phi: f32) -> C32 {
-    let s = super::sin(0.5 * phi);
-    let h = cis(0.5 * phi);
-    // −2i s (c + i d) = 2 s d − 2i s c
-    C32::new(2.0 * s * h.im, -2.0 * s * h.re)
-}
-
 /// `i z`.
 #[inline]
 pub fn cmul_i(z: C32) -> C32 {

@@ -13,9 +13,10 @@
 //! Short intervals (where the difference of two nearly equal `erf` values would cancel) are
 //! integrated directly by 8-point Gauss–Legendre instead.
 
-use super::complex::{C32, cis, cscale};
+use super::complex::{C32, cscale};
 use super::faddeeva::{faddeeva, faddeeva_lanes};
 use super::quadrature::{GL8_W as GL_W, GL8_X as GL_X};
+use super::trig_pi::cis_pi;
 
 /// The Faddeeva argument `s(−y + ix)` of the endpoint `z = x + iy`, with `s = sign(x)` so
 /// that it lies in the upper half plane. The endpoint's term is then
@@ -79,12 +80,12 @@ pub fn gauss_fourier_interval(a: f32, b: f32, sigma: f32, nu: f32) -> C32 {
         (zero, zero)
     };
     let ea = if need_a {
-        cscale(cis(-super::TAU * nu * a) * wa, ga)
+        cscale(cis_pi(-2.0 * nu * a) * wa, ga)
     } else {
         zero
     };
     let eb = if need_b {
-        cscale(cis(-super::TAU * nu * b) * wb, gb)
+        cscale(cis_pi(-2.0 * nu * b) * wb, gb)
     } else {
         zero
     };
@@ -113,7 +114,7 @@ fn gauss_legendre(a: f32, b: f32, sigma: f32, nu: f32) -> C32 {
         while j < 2 {
             let u = if j == 0 { mid - d } else { mid + d };
             let g = super::exp(-u * u * inv2s2) * GL_W[i];
-            acc += cscale(cis(-super::TAU * nu * u), g);
+            acc += cscale(cis_pi(-2.0 * nu * u), g);
             j += 1;
         }
         i += 1;

@@ -12,14 +12,16 @@ mod faddeeva;
 mod gamma;
 mod gauss_interval;
 mod si;
+mod trig_pi;
 
 pub use atan::{acos, asin, atan, atan2};
-pub use complex::{C32, cis, cmul_i, cscale, csqrt, one_minus_cis};
+pub use complex::{C32, cis, cmul_i, cscale, csqrt};
 pub use expm1::{expm1, ln1p};
 pub use faddeeva::{faddeeva, faddeeva_lanes};
 pub use gamma::{gamma, gamma_inv, gamma_p, gamma_p_inv, gamma_q, gamma_q_inv, lgamma};
 pub use gauss_interval::{erf, gauss_fourier_interval, gauss_interval};
 pub use si::{si, si_split, si_velinov, si_velinov_split};
+pub use trig_pi::{cis_pi, one_minus_cis_pi, sin_cos_pi, sinc_pi};
 
 /// π in `f32`.
 pub const PI: f32 = core::f32::consts::PI;
@@ -81,14 +83,15 @@ pub fn cos(x: f32) -> f32 {
 }
 
 /// `(sin x, cos x)`. On the CPU one `libm::sincosf` call shares the argument reduction
-/// (same kernels as `sinf`/`cosf`); on SPIR-V the two GLSL.std.450 intrinsics.
+/// (same kernels as `sinf`/`cosf`); on SPIR-V the two GLSL.std.450 intrinsics; under
+/// `portable-math` the kernel's own [`sin`] and [`cos`] on both.
 #[inline]
 pub fn sin_cos(x: f32) -> (f32, f32) {
-    #[cfg(target_arch = "spirv")]
+    #[cfg(any(target_arch = "spirv", feature = "portable-math"))]
     {
-        (libm::sinf(x), libm::cosf(x))
+        (sin(x), cos(x))
     }
-    #[cfg(not(target_arch = "spirv"))]
+    #[cfg(not(any(target_arch = "spirv", feature = "portable-math")))]
     {
         libm::sincosf(x)
     }

@@ -15,7 +15,9 @@
 //! | [`sin`], [`cos`] | \|x\| ≤ 8192 (3-part π/4 reduction) | ≈ 1 ULP; absolute error grows with \|x\| beyond |
 //!
 //! NaN in, NaN out. These are always compiled, so both variants can be compared in one
-//! build; the feature only changes which one the seam calls.
+//! build; the feature only changes which one the seam calls. The `|r| ≤ π/4` polynomials
+//! also serve [`super::sin_cos_pi`] on every build (no feature), where the reduction is
+//! exact and so survives the driver's rewriting.
 
 /// log₂e.
 const LOG2E: f32 = core::f32::consts::LOG2_E;
@@ -107,14 +109,14 @@ fn reduce_pio4(x: f32) -> (u32, f32) {
 
 /// sin(r) for |r| ≤ π/4.
 #[inline]
-fn sin_poly(r: f32) -> f32 {
+pub(super) fn sin_poly(r: f32) -> f32 {
     let z = r * r;
     ((-1.951_529_589_1e-4 * z + 8.332_160_873_6e-3) * z - 1.666_665_461_1e-1) * z * r + r
 }
 
 /// cos(r) for |r| ≤ π/4.
 #[inline]
-fn cos_poly(r: f32) -> f32 {
+pub(super) fn cos_poly(r: f32) -> f32 {
     let z = r * r;
     ((2.443_315_711_809_948e-5 * z - 1.388_731_625_493_765e-3) * z + 4.166_664_568_298_827e-2)
         * z

@@ -8,13 +8,16 @@
 //! | `spatial_phase` | η, finite (App. A) and infinite (Velinov Eq. 8) |
 //! | `set` | "every scratch near x0": brute force or the flattened BVH |
 //! | `response` | base response B (Eq. 16), scratch response S (Eq. 17), ρc |
+//! | `coherent_sum` | `S = Σ S_k` summed exactly on a grid, so `B − S` survives cancellation |
 
+pub mod coherent_sum;
 pub mod profile;
 pub mod response;
 pub mod segment;
 pub mod set;
 pub mod spatial_phase;
 
+pub use coherent_sum::CoherentSum;
 pub use profile::{DepthTerm, Profile};
 pub use response::{
     ResponseInputs, ScratchTerms, base_response, scratch_area_density, scratch_response,

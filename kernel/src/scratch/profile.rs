@@ -11,6 +11,10 @@
 //!   This is Eqs. 29–31 with their typos fixed (B's exponent lacks a `W`, B's denominator
 //!   has `W²` where `Wλ` belongs) and the removable poles at `β = ±κ` folded into `sinc`,
 //!   so it is finite everywhere. It reduces to the mask when `D = 0`.
+//!
+//! The phases are carried in half-turns, `β/π = Wξ₂` and `κ/π = 2γD/λ`, and evaluated by
+//! [`math::sin_cos_pi`] and friends, whose argument reduction is exact: a groove whose depth
+//! phase is near a whole number of waves (`|1 − e^{iκ}|` small) keeps its relative accuracy.
 
 use crate::math::{self, C32};
 
@@ -71,27 +75,34 @@ impl DepthTerm {
 /// Mask transform `M(ξ₂) = W sinc(πWξ₂)` (Werner Eq. 14/26).
 #[inline]
 pub fn mask_transform(width: f32, xi2: f32) -> f32 {
-    width * math::sinc(math::PI * width * xi2)
+    width * math::sinc_pi(width * xi2)
 }
 
 /// Groove transform `P(ξ₂)` for the given profile (Werner Eqs. 27–31, corrected).
-/// `gamma` is the effective `γi + γo`, `lambda` in µm.
+/// `half_turns_per_um` is `2γ/λ` (1/µm, γ the effective `γi + γo`), so that the depth
+/// phase is `κ = π · depth · half_turns_per_um` (Werner Eq. 20).
 pub fn profile_transform(
     profile: Profile,
     width: f32,
     depth: f32,
-    gamma: f32,
-    lambda: f32,
+    half_turns_per_um: f32,
     xi2: f32,
 ) -> C32 {
-    let beta = math::PI * width * xi2;
-    let kappa = math::TAU * gamma * depth / lambda;
+    // β/π and κ/π.
+    let beta = width * xi2;
+    let kappa = depth * half_turns_per_um;
     match profile {
-        Profile::Rect => math::cscale(math::cis(kappa), width * math::sinc(beta)),
+        Profile::Rect => math::cscale(math::cis_pi(kappa), width * math::sinc_pi(beta)),
         Profile::Triangle => {
-            let a = math::cscale(math::cis(0.5 * beta), math::sinc(0.5 * (beta - kappa)));
-            let b = math::cscale(math::cis(-0.5 * beta), math::sinc(0.5 * (beta + kappa)));
-            math::cscale(math::cis(0.5 * kappa) * (a + b), 0.5 * width)
+            let a = math::cscale(
+                math::cis_pi(0.5 * beta),
+                math::sinc_pi(0.5 * (beta - kappa)),
+            );
+            let b = math::cscale(
+                math::cis_pi(-0.5 * beta),
+                math::sinc_pi(0.5 * (beta + kappa)),
+            );
+            math::cscale(math::cis_pi(0.5 * kappa) * (a + b), 0.5 * width)
         }
     }
 }
@@ -103,18 +114,17 @@ pub fn mask_minus_profile(
     profile: Profile,
     width: f32,
     depth: f32,
-    gamma: f32,
-    lambda: f32,
+    half_turns_per_um: f32,
     xi2: f32,
 ) -> C32 {
     match profile {
         Profile::Rect => {
-            let kappa = math::TAU * gamma * depth / lambda;
-            math::cscale(math::one_minus_cis(kappa), mask_transform(width, xi2))
+            let kappa = depth * half_turns_per_um;
+            math::cscale(math::one_minus_cis_pi(kappa), mask_transform(width, xi2))
         }
         Profile::Triangle => {
             C32::new(mask_transform(width, xi2), 0.0)
-                - profile_transform(profile, width, depth, gamma, lambda, xi2)
+                - profile_transform(profile, width, depth, half_turns_per_um, xi2)
         }
     }
 }

@@ -1,10 +1,11 @@
 //! Base and scratch responses of the coherence window around `x0` (Werner 2017 Eqs. 15–17)
 //! and the scratch area density ρc (Werner §5, Velinov Eq. 17 corrected).
 
+use super::coherent_sum::CoherentSum;
 use super::profile::{Profile, mask_minus_profile};
 use super::set::{NearCursor, ScratchSet};
 use super::spatial_phase::{EtaMode, eta, xi_local};
-use crate::math::{self, C32};
+use crate::math;
 use glam::Vec2;
 
 /// Radius, in units of σ, beyond which a scratch's contribution is dropped: its amplitude
@@ -23,8 +24,9 @@ pub fn base_response(xi: Vec2, sigma: f32) -> f32 {
 /// single pass.
 #[derive(Clone, Copy, Debug)]
 pub struct ScratchTerms {
-    /// Coherent scratch response `S = Σ (M_k − P_k) η_k` (Werner Eq. 17), µm².
-    pub coherent: C32,
+    /// Coherent scratch response `S = Σ (M_k − P_k) η_k` (Werner Eq. 17), µm², summed
+    /// exactly (use [`CoherentSum::subtracted_from`] for `B − S`).
+    pub coherent: CoherentSum,
     /// Incoherent sum `Σ |S_k|²` (Velinov Eq. 7), µm⁴.
     pub incoherent: f32,
     /// Scratch area density ρc at `x0` (dimensionless; 1 for a fully scratched window);
@@ -39,10 +41,9 @@ pub struct ResponseInputs {
     pub x0: Vec2,
     /// `(wi + wo)_xy / λ` (1/µm).
     pub xi: Vec2,
-    /// Effective `γi + γo` for the depth phase (see [`super::DepthTerm::gamma`]).
-    pub gamma: f32,
-    /// Wavelength (µm).
-    pub lambda: f32,
+    /// The depth phase in half-turns per µm of groove depth, `2γ/λ` (1/µm), with the
+    /// effective `γ` of [`super::DepthTerm::gamma`] (see `table::depth_half_turns_per_um`).
+    pub depth_half_turns_per_um: f32,
     /// Coherence σ (µm).
     pub sigma: f32,
     /// Finite or infinite spatial phase.
@@ -54,7 +55,7 @@ pub struct ResponseInputs {
 /// Sums the scratch terms over every scratch within [`CUTOFF_SIGMAS`]·σ of `x0`.
 pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTerms {
     let mut terms = ScratchTerms {
-        coherent: C32::new(0.0, 0.0),
+        coherent: CoherentSum::new(base_response(Vec2::ZERO, q.sigma)),
         incoherent: 0.0,
         area_density: 0.0,
     };
@@ -64,9 +65,9 @@ pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTe
         if let Some(frame) = s.frame() {
             let (_, xi2) = xi_local(&frame, q.xi);
             let profile = Profile::from_u32(s.profile);
-            let m_p = mask_minus_profile(profile, s.width, s.depth, q.gamma, q.lambda, xi2);
+            let m_p = mask_minus_profile(profile, s.width, s.depth, q.depth_half_turns_per_um, xi2);
             let sk = m_p * eta(q.eta, &frame, q.x0, q.xi, sigma);
-            terms.coherent += sk;
+            terms.coherent.add(sk);
             terms.incoherent += sk.norm_sqr();
             if q.area_density {
                 terms.area_density += area_density_of(&frame, s.width, q.x0, sigma);

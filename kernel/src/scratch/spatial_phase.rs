@@ -43,7 +43,7 @@ pub fn xi_local(frame: &SegmentFrame, xi: Vec2) -> (f32, f32) {
 #[inline]
 fn across(s_b: f32, xi2: f32, sigma: f32) -> C32 {
     let g = math::exp(-0.5 * s_b * s_b / (sigma * sigma));
-    math::cscale(math::cis(-math::TAU * s_b * xi2), g)
+    math::cscale(math::cis_pi(-2.0 * s_b * xi2), g)
 }
 
 /// Finite-segment η (Werner App. A, Eqs. 23–24, overflow-free).
