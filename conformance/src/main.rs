@@ -11,7 +11,7 @@ use std::process::ExitCode;
 
 const USAGE: &str = "usage:
   scratchwave run [--cases DIR] [--out DIR]      conformance run over the committed cases
-  scratchwave table SPEC.json [--backend cpu|simd|all]
+  scratchwave table SPEC.json [--backend cpu|simd|spirv|all]
   scratchwave footprint SPEC.json [--backend cpu|simd|spirv]
   scratchwave light SPEC.json [--backend cpu|simd|spirv]";
 
