@@ -426,6 +426,27 @@ def job_tables(names):
     return out
 
 
+def job_sweeps():
+    """golden/sweeps/: tables whose queries carry their conditioning (see tables.py)."""
+    import tables
+    mp.mp.dps = 30
+    rc.MEMO.clear()
+    out = {}
+    for name, (desc, spec) in tables.sweep_tables().items():
+        exp_, depth, amp = [], [], []
+        for qq in spec["queries"]:
+            v, parts = rc.brdf(spec, qq, return_parts=True)
+            B, S = parts["B"], parts["S"]
+            exp_.append(float(v))
+            depth.append(float(abs(B - S) / abs(B)))
+            amp.append(float((abs(B) + mp.fsum(abs(x) for x in parts["Sk"])) / abs(B - S)))
+        case = {"description": desc, "spec": spec, "expected": exp_, "depth": depth,
+                "amplification": amp}
+        out["sweeps/%s.json" % name] = json.dumps(case, indent=1) + "\n"
+    rc.MEMO.clear()
+    return out
+
+
 def table_groups():
     import tables
     names = list(tables.all_tables())
@@ -454,6 +475,8 @@ def run_job(job):
         r = job_footprint()
     elif kind == "tables":
         r = job_tables(job[1])
+    elif kind == "sweeps":
+        r = job_sweeps()
     elif kind == "checks":
         import checks
         r = {"_checks": checks.run_all()}
@@ -480,10 +503,11 @@ def main():
     jobs += [("eta", k, NE) for k in range(NE)]
     jobs += [("tables", tuple(grp)) for grp in table_groups()]
     jobs += [("profile", k, NP) for k in range(NP)]
-    jobs += [("footprint",), ("checks",), ("faddeeva",), ("si",), ("fresnel",)]
+    jobs += [("footprint",), ("checks",), ("faddeeva",), ("si",), ("fresnel",), ("sweeps",)]
     if only:
         jobs = [j for j in jobs if j[0] in only]
     os.makedirs(os.path.join(GOLDEN, "tables"), exist_ok=True)
+    os.makedirs(os.path.join(GOLDEN, "sweeps"), exist_ok=True)
     t0 = time.time()
     results = {}
     if args.jobs > 1:

@@ -183,12 +183,18 @@ def cancellation(scratches, qq, sigma=10.0):
     """|B - S| / |B| of a werner query (depth exact) in float64 (numpy/scipy closed forms;
     agrees with mpmath to ~15 digits): fast enough to rank thousands of candidates, used only
     to select queries, never as a golden value."""
-    from scipy.special import erf, erfc
     wi, wo = (np.array(rc._direction(qq[k]), dtype=float) for k in ("wi", "wo"))
-    lam = qq["lambda_nm"] / 1000.0
+    B, d = base_minus_scratches(scratches, wi, wo, qq["lambda_nm"], qq["x"], sigma)
+    return abs(d) / B
+
+
+def base_minus_scratches(scratches, wi, wo, lambda_nm, x, sigma=10.0):
+    """(B, B - S) in float64 for unit wi, wo (numpy arrays): the selection helper above."""
+    from scipy.special import erf, erfc
+    lam = lambda_nm / 1000.0
     gamma = wi[2] + wo[2]
     xi = (wi[:2] + wo[:2]) / lam
-    x0 = np.array(qq["x"], dtype=float)
+    x0 = np.array(x, dtype=float)
     S = 0j
     for s in scratches:
         p0, p1 = np.array(s["p0"], dtype=float), np.array(s["p1"], dtype=float)
@@ -220,7 +226,39 @@ def cancellation(scratches, qq, sigma=10.0):
                         - 2j * math.pi * s_b * xi2))
         S += (m - p) * eta
     B = 2 * math.pi * sigma ** 2 * math.exp(-2 * math.pi ** 2 * sigma ** 2 * (xi @ xi))
-    return abs(B - S) / B
+    return B, B - S
+
+
+def cancellation_sweep(scratches, starts, depths, sigma=10.0):
+    """Queries at prescribed cancellation depths |B - S|/|B|: for each start query, the zero
+    of B - S nearest to its (wi + wo)_xy (Nelder-Mead on |B - S|/B over the 2-D offset, wi,
+    lambda and x fixed), then points along a fixed direction from that zero where the depth
+    is each of `depths` (bisection; |B - S| grows linearly away from a simple zero). float64
+    selection only: the golden values and the depths stored with them come from mpmath."""
+    from scipy.optimize import minimize
+
+    def depth(wi, sxy, lam, x):
+        wo = wo_from_sum(list(wi), sxy)
+        B, d = base_minus_scratches(scratches, np.array(wi), np.array(wo), lam, x, sigma)
+        return abs(d) / B
+
+    out = []
+    for qq in starts:
+        wi, lam, x = qq["wi"], qq["lambda_nm"], qq["x"]
+        s0 = [wi[0] + qq["wo"][0], wi[1] + qq["wo"][1]]
+        z = minimize(lambda v: depth(wi, v, lam, x), s0, method="Nelder-Mead",
+                     options={"xatol": 1e-12, "fatol": 1e-14, "maxiter": 4000}).x
+        e = np.array([math.cos(1.0), math.sin(1.0)])
+        for d in depths:
+            lo, hi = 0.0, 1e-3
+            while depth(wi, z + hi * e, lam, x) < d:
+                hi *= 2
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if depth(wi, z + mid * e, lam, x) < d else (lo, mid)
+            sxy = z + hi * e
+            out.append(q(wi, wo_from_sum(list(wi), sxy), lam, x))
+    return out
 
 
 def random_scratches(rng, n, radius, profiles=("rect", "triangle")):
@@ -449,3 +487,16 @@ def all_tables():
          "options": {"depth_term": "exact"}, "queries": [deep[i] for _, i in ranked[:12]]})
     return T
 
+
+def sweep_tables():
+    """Tables kept out of the conformance run (golden/sweeps/): each query stores the
+    conditioning it was chosen for, and the test checks the error against it."""
+    dd = all_tables()["deep_cancellation_werner"][1]
+    depths = [1e-2, 3e-3, 1e-3, 3e-4, 1e-4]
+    qs = cancellation_sweep(dd["scratches"], dd["queries"][:3], depths)
+    return {"cancellation_werner": (
+        "The dense_coherent_werner scratches near three zeros of B - S, at cancellation "
+        "depths |B - S|/|B| of 1e-2, 3e-3, 1e-3, 3e-4 and 1e-4: how the f32 kernel's error "
+        "grows as the coherent sum cancels (the amplification (|B| + sum |S_k|)/|B - S| is "
+        "stored with each query).",
+        dict(dd, queries=qs))}
