@@ -176,6 +176,14 @@ pub fn direction(v: [f32; 3]) -> Vec3 {
     }
 }
 
+/// λ in µm from λ in nm, for the prefactors and band widths (`λ_nm · 0.001_f32`: its
+/// 4.7e-8 relative error is harmless there; the phases use [`xi_of`] and
+/// [`depth_half_turns_per_um`], which divide by `λ_nm` instead).
+#[inline]
+pub fn um_from_nm(lambda_nm: f32) -> f32 {
+    lambda_nm * 1.0e-3
+}
+
 /// `ξ = (wi + wo)_xy / λ` (1/µm; zero in the mirror direction) from λ in nm.
 ///
 /// Written `1000 (wi + wo)_xy / λ_nm`: a division by the run-time `λ_nm`, which every
@@ -201,7 +209,7 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
     let wi = direction(q.wi);
     let wo = direction(q.wo);
     let sigma = params.sigma_um;
-    let lambda = q.lambda_nm * 1.0e-3;
+    let lambda = um_from_nm(q.lambda_nm);
     if !(wi.z > 0.0 && wo.z > 0.0 && sigma > 0.0 && lambda > 0.0) {
         return 0.0;
     }
@@ -261,6 +269,6 @@ pub fn evaluate_ghs_with_g1_table(p: &GhsParams, g1_table: G1Table, q: &TableQue
     if !(wi.z > 0.0 && wo.z > 0.0 && q.lambda_nm > 0.0) {
         return 0.0;
     }
-    let r = ghs::evaluate_with_g1_table(p, g1_table, wi, wo, q.lambda_nm * 1.0e-3);
+    let r = ghs::evaluate_with_g1_table(p, g1_table, wi, wo, um_from_nm(q.lambda_nm));
     if r.is_finite() && r > 0.0 { r } else { 0.0 }
 }

@@ -562,7 +562,7 @@ pub fn scratch_band_power(
 pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: &S) -> f32 {
     let wo = Vec3::from_array(q.wo).normalize_or_zero();
     let sigma = params.sigma_um;
-    let lambda = q.lambda_nm * 1.0e-3;
+    let lambda = crate::table::um_from_nm(q.lambda_nm);
     if !(wo.z > 0.0 && sigma > 0.0 && lambda > 0.0 && sigma.is_finite() && lambda.is_finite()) {
         return 0.0;
     }

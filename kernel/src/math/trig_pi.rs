@@ -77,9 +77,8 @@ pub fn one_minus_cis_pi(x: f32) -> C32 {
 #[inline]
 pub fn sinc_pi(x: f32) -> f32 {
     let t = super::PI * x;
-    if super::abs(t) < 1.0e-2 {
-        let t2 = t * t;
-        1.0 - t2 * (1.0 / 6.0) * (1.0 - t2 * (1.0 / 20.0))
+    if super::abs(t) < super::SINC_SERIES_BELOW {
+        super::sinc(t)
     } else {
         sin_cos_pi(x).0 / t
     }

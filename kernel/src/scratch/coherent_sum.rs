@@ -18,8 +18,8 @@
 
 use crate::math::{self, C32};
 
-/// log₂ of `B(0)/g`.
-const GRID_BITS: i32 = 16;
+/// `g / B(0)` (up to the power of two below `B(0)`): 2⁻¹⁶.
+const GRID_SCALE: f32 = 1.0 / 65_536.0;
 /// Bounds on the grid, so that `1/g` and `g` stay finite and normal for any σ.
 const GRID_MIN: f32 = 7.888_609e-31; // 2⁻¹⁰⁰
 const GRID_MAX: f32 = 1.267_650_6e30; // 2¹⁰⁰
@@ -37,9 +37,9 @@ impl CoherentSum {
     /// An empty sum whose terms are of the order of `scale` (the base response's peak).
     #[inline]
     pub fn new(scale: f32) -> CoherentSum {
-        // The largest power of two ≤ |scale| (exponent bits only), then 2^-GRID_BITS of it.
+        // The largest power of two ≤ |scale| (exponent bits only), then 2⁻¹⁶ of it.
         let pow2 = f32::from_bits(math::abs(scale).to_bits() & 0x7f80_0000);
-        let grid = math::clamp(pow2 * exp2i(-GRID_BITS), GRID_MIN, GRID_MAX);
+        let grid = math::clamp(pow2 * GRID_SCALE, GRID_MIN, GRID_MAX);
         CoherentSum {
             hi: C32::new(0.0, 0.0),
             lo: C32::new(0.0, 0.0),
@@ -89,17 +89,12 @@ impl CoherentSum {
 /// 2²⁴: below it an f32 → i32 → f32 round trip is exact.
 const TRUNC_LIMIT: f32 = 16_777_216.0;
 
-/// `2^k` for `k` in `-126..=127`.
-#[inline]
-fn exp2i(k: i32) -> f32 {
-    f32::from_bits(((k + 127) as u32) << 23)
-}
-
 #[cfg(test)]
 mod tests {
-    extern crate std;
     use super::*;
-    use std::vec::Vec;
+
+    /// Terms per test sum, like the scratches of `random_werner_1e4`.
+    const N: usize = 24;
 
     /// A small deterministic generator (the kernel has no RNG dependency).
     fn lcg(state: &mut u64) -> f32 {
@@ -111,23 +106,20 @@ mod tests {
 
     /// Terms of size ~B/4 whose sum cancels `b` to about 1e-4 of it, like a densely
     /// scratched window near the mirror direction.
-    fn cancelling_terms(seed: u64, n: usize, b: f32) -> Vec<C32> {
+    fn cancelling_terms(seed: u64, b: f32) -> [C32; N] {
         let mut s = seed;
-        let mut terms: Vec<C32> = (0..n)
-            .map(|_| {
-                C32::new(
-                    0.5 * b * lcg(&mut s) / n as f32 * 4.0,
-                    0.3 * b * (lcg(&mut s) - 0.5),
-                )
-            })
-            .collect();
+        let mut terms: [C32; N] = core::array::from_fn(|_| {
+            C32::new(
+                0.5 * b * lcg(&mut s) / N as f32 * 4.0,
+                0.3 * b * (lcg(&mut s) - 0.5),
+            )
+        });
         // Make Σ re ≈ b and Σ im ≈ 0 (up to f32 rounding of the adjustment itself).
         let (sr, si) = terms.iter().fold((0.0_f64, 0.0_f64), |(a, c), z| {
             (a + f64::from(z.re), c + f64::from(z.im))
         });
-        let last = terms.last_mut().unwrap();
-        last.re += (f64::from(b) - sr + 1.0e-4 * f64::from(b)) as f32;
-        last.im -= (si - 3.0e-5 * f64::from(b)) as f32;
+        terms[N - 1].re += (f64::from(b) - sr + 1.0e-4 * f64::from(b)) as f32;
+        terms[N - 1].im -= (si - 3.0e-5 * f64::from(b)) as f32;
         terms
     }
 
@@ -142,7 +134,7 @@ mod tests {
     fn b_minus_s_within_one_ulp_and_order_free() {
         for (seed, sigma) in [(1_u64, 10.0_f32), (2, 0.7), (3, 55.0), (4, 3.0)] {
             let b = math::TAU * sigma * sigma;
-            let terms = cancelling_terms(seed, 24, b);
+            let terms = cancelling_terms(seed, b);
             let (er, ei) = exact(b, &terms);
             let mut sum = CoherentSum::new(b);
             terms.iter().for_each(|&z| sum.add(z));
