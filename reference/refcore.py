@@ -6,7 +6,7 @@ The closed forms appear only in ``closedform_*`` helpers, which exist so the
 self-checks can compare the two.
 
 Units: lengths in micrometres, wavelength in micrometres (lambda_nm / 1000),
-spatial frequencies in 1/um.  Conventions follow /work/shared/DESIGN.md:
+spatial frequencies in 1/um.  Conventions follow ARCHITECTURE.md (*Conventions*):
 
     xi      = (wi + wo)_xy / lambda                      (1/um)
     G(x)    = exp(-|x - x0|^2 / (2 sigma^2))

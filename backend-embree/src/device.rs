@@ -1,9 +1,8 @@
 //! The Embree device: library loading, version and ABI checks, error reporting.
 
 use crate::ffi::{self, RTCDevice};
-use scratchwave_cpu::MeshError;
+use scratchwave_host::MeshError;
 use std::ffi::{CStr, CString, c_char};
-use std::sync::OnceLock;
 
 /// Everything that can go wrong at the Embree boundary.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -56,14 +55,9 @@ unsafe impl Sync for Device {}
 const MIN_VERSION: isize = 40300;
 
 impl Device {
-    /// A device with Embree's default configuration (all cores for builds, best ISA).
-    pub fn new() -> Result<Device, Error> {
-        Device::with_config("")
-    }
-
-    /// A device with an Embree configuration string, e.g. `"threads=1,isa=avx2"` (see the
-    /// Embree manual, `rtcNewDevice`).
-    pub fn with_config(config: &str) -> Result<Device, Error> {
+    /// Creates the device and checks the version, without the hit-layout probe (which
+    /// needs a scene: [`Device::with_config`] in `open.rs` runs it).
+    pub(crate) fn open_unchecked(config: &str) -> Result<Device, Error> {
         let api = ffi::api().map_err(|e| Error::Load(e.to_owned()))?;
         let c_config = CString::new(config).map_err(|_| Error::InvalidConfig(config.into()))?;
         // SAFETY: a valid C string; a null result is handled below.
@@ -78,9 +72,6 @@ impl Device {
         if !(MIN_VERSION..50000).contains(&version) {
             return Err(Error::UnsupportedVersion { found: version });
         }
-        static ABI: OnceLock<Result<(), Error>> = OnceLock::new();
-        ABI.get_or_init(|| crate::scene::check_hit_layout(&device))
-            .clone()?;
         Ok(device)
     }
 

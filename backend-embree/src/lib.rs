@@ -5,9 +5,9 @@
 //! - [`Device`]: loads Embree (from the path the build script found: `.deps/embree` or
 //!   `$EMBREE_DIR`), checks the version (≥ 4.3) and the hit-record layout once per process;
 //! - [`SceneBuilder`] → [`Scene`]: triangle meshes; closest hit for single rays and packets
-//!   of 4/8/16, occlusion for shadow rays. Implements [`scratchwave_cpu::RayQueries`];
+//!   of 4/8/16, occlusion for shadow rays. Implements [`scratchwave_host::RayQueries`];
 //! - [`SegmentIndex`]: "all scratch segments within `r` of a point" (USER geometry +
-//!   `rtcPointQuery`). Implements [`scratchwave_cpu::SegmentRadiusQuery`].
+//!   `rtcPointQuery`). Implements [`scratchwave_host::SegmentRadiusQuery`].
 //!
 //! All results are raw hits; shading stays in the kernel. Committed scenes and segment
 //! indices are `Send + Sync` for rayon.
@@ -17,6 +17,7 @@
 
 mod device;
 pub mod ffi;
+mod open;
 mod scene;
 mod segments;
 

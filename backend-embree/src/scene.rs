@@ -3,8 +3,8 @@
 
 use crate::device::{Device, Error};
 use crate::ffi::{self, RTCRay, RTCRayHit, RTCScene, Valid};
-use scratchwave_cpu::mesh::validate_mesh;
-use scratchwave_cpu::{Coherence, RayQueries};
+use scratchwave_host::mesh::validate_mesh;
+use scratchwave_host::{Coherence, RayQueries};
 use scratchwave_kernel::ray::{Hit, Ray};
 
 /// Embree's BVH build quality (`RTC_BUILD_QUALITY_*`): build time against trace speed.
@@ -188,7 +188,7 @@ fn is_valid(ray: &Ray) -> bool {
 }
 
 #[inline]
-fn to_rtc(ray: &Ray) -> RTCRay {
+pub(crate) fn to_rtc(ray: &Ray) -> RTCRay {
     RTCRay {
         org_x: ray.origin[0],
         org_y: ray.origin[1],
@@ -500,7 +500,7 @@ impl Scene {
 
     /// Closest hits of many rays in packets of `width` (1, 4, 8 or 16; other widths
     /// trace single rays). Consecutive rays form a packet, so order coherent rays in compact
-    /// tiles (see `scratchwave_cpu::fixtures::camera_rays`).
+    /// tiles (see `scratchwave_testkit::fixtures::camera_rays`).
     ///
     /// # Panics
     /// If `rays` and `hits` differ in length.
@@ -558,45 +558,4 @@ impl RayQueries for Scene {
     fn closest_hits(&self, rays: &[Ray], hits: &mut [Option<Hit>], coherence: Coherence) {
         self.intersect_many(rays, hits, 16, coherence);
     }
-}
-
-/// Traces one ray against a one-triangle scene with guard words after the hit record and
-/// checks that Embree wrote nothing past it. Run once per process by [`Device::new`].
-pub(crate) fn check_hit_layout(device: &Device) -> Result<(), Error> {
-    const GUARD: u32 = 0xDEAD_BEEF;
-    #[repr(C, align(64))]
-    struct Guarded {
-        rayhit: RTCRayHit,
-        guard: [u32; 32],
-    }
-    let mut builder = SceneBuilder::new(device)?;
-    builder.add_triangle_mesh(
-        &[[-1.0, -1.0, 1.0], [1.0, -1.0, 1.0], [0.0, 1.0, 1.0]],
-        &[[0, 1, 2]],
-    )?;
-    let scene = builder.commit()?;
-    let mut probe = Guarded {
-        rayhit: RTCRayHit {
-            ray: to_rtc(&Ray::new([0.0; 3], [0.0, 0.0, 1.0])),
-            hit: ffi::RTCHit::default(),
-        },
-        guard: [GUARD; 32],
-    };
-    let mut args = ffi::RTCIntersectArguments::new(ffi::RTC_RAY_QUERY_FLAG_INCOHERENT);
-    // SAFETY: the record is followed by 128 bytes we own, so even an ABI mismatch writes
-    // only into our own memory.
-    unsafe { (ffi::loaded().rtcIntersect1)(scene.as_raw(), &mut probe.rayhit, &mut args) };
-    if probe.rayhit.hit.geomID != 0 || (probe.rayhit.ray.tfar - 1.0).abs() > 1e-5 {
-        return Err(Error::IncompatibleAbi(format!(
-            "probe ray reported geomID {} at t = {} (expected 0 at 1)",
-            probe.rayhit.hit.geomID, probe.rayhit.ray.tfar
-        )));
-    }
-    if let Some(i) = probe.guard.iter().position(|&g| g != GUARD) {
-        return Err(Error::IncompatibleAbi(format!(
-            "rtcIntersect1 wrote {} bytes past the 4.4-layout RTCRayHit",
-            4 * (i + 1)
-        )));
-    }
-    Ok(())
 }

@@ -8,10 +8,10 @@
 use crate::device::{Device, Error};
 use crate::ffi;
 use crate::scene::{BuildQuality, SceneBuilder};
-use scratchwave_cpu::SegmentRadiusQuery;
-use scratchwave_cpu::mesh::check_count;
+use scratchwave_host::SegmentRadiusQuery;
+use scratchwave_host::mesh::check_count;
 use scratchwave_kernel::bvh::RADIUS_SLACK;
-use scratchwave_kernel::segment::Segment2;
+use scratchwave_kernel::segment2d::Segment2;
 use std::ffi::c_void;
 
 /// Segments indexed by an Embree BVH for radius queries. `Send + Sync`.

@@ -13,11 +13,12 @@
 //!   staying within 1e-5·κ, κ the condition number of `t` (grazing incidence, origins a hair
 //!   above the surface); at most 1 in 100 hits.
 
-use scratchwave_cpu::fixtures::{Mesh, camera_rays, random_rays, sphere_with, triangle_soup};
-use scratchwave_cpu::mesh::triangles_of;
-use scratchwave_cpu::{Coherence, RayQueries, TriangleBvh, reference};
 use scratchwave_embree::{Device, Scene, SceneBuilder};
+use scratchwave_host::mesh::triangles_of;
+use scratchwave_host::{Coherence, RayQueries, TriangleBvh};
 use scratchwave_kernel::ray::{Hit, Ray, Triangle};
+use scratchwave_testkit::fixtures::{Mesh, camera_rays, random_rays, sphere_with, triangle_soup};
+use scratchwave_testkit::reference;
 
 type V3 = [f64; 3];
 

@@ -1,10 +1,11 @@
 //! Embree's scratch radius query against brute force (and the portable BVH): exactly the
 //! same set of segments on 10⁴ queries for each of 10³ … 10⁶ segments.
 
-use scratchwave_cpu::fixtures::{random_points, scratch_field};
-use scratchwave_cpu::{SegmentBvh, SegmentRadiusQuery, reference};
 use scratchwave_embree::{Device, SegmentIndex};
-use scratchwave_kernel::segment::Segment2;
+use scratchwave_host::{SegmentBvh, SegmentRadiusQuery};
+use scratchwave_kernel::segment2d::Segment2;
+use scratchwave_testkit::fixtures::{random_points, scratch_field};
+use scratchwave_testkit::reference;
 
 const RADIUS: f32 = 30.0;
 

@@ -15,7 +15,8 @@
 //!   dispatch and readback.
 //! - Typed entry points on top of it, each with the CPU function it must agree with:
 //!   [`Gpu::evaluate_table`] and [`Gpu::footprint_table`] (the CPU backend's
-//!   `evaluate_table` / `footprint_table`), [`Gpu::math_probe`] / [`math_probe_cpu`].
+//!   `evaluate_table` / `footprint_table`), [`Gpu::math_probe`] / [`math_probe_cpu`];
+//!   [`Gpu`] implements `scratchwave_host::TableBackend` for the conformance run.
 
 mod adapter;
 mod dispatch;
@@ -23,13 +24,12 @@ mod error;
 mod gpu;
 mod probe;
 mod table;
+mod table_backend;
 
 pub use adapter::{ADAPTER_ENV, AdapterChoice, AdapterKind, AdapterSummary};
 pub use dispatch::{Dispatched, Input, Timings};
 pub use error::{Result, SpirvError};
 pub use gpu::{Gpu, SHADER_SPV, entry_points};
 pub use probe::math_probe_cpu;
-/// The CPU backend's footprint row, which the GPU path fills too.
-pub use scratchwave_cpu::FootprintRow;
 pub use scratchwave_spirv_shader::FootprintParams;
 pub use scratchwave_spirv_shader::probe::{MathFunction, ProbeParams};

@@ -1,9 +1,10 @@
-//! BRDF tables and footprint tables on the GPU, mirroring `scratchwave_cpu::table`.
+//! BRDF tables and footprint tables on the GPU, mirroring the CPU backend's `table` module.
 
 use crate::dispatch::{Dispatched, Input, Timings};
 use crate::error::Result;
+use crate::error::SpirvError;
 use crate::gpu::Gpu;
-use scratchwave_cpu::{FootprintRow, ScratchLookup};
+use scratchwave_host::{FootprintRow, ScratchLookup};
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::ghs::GhsParams;
 use scratchwave_kernel::ghs::g1::G1Table;
@@ -40,7 +41,12 @@ impl Gpu {
         lookup: &ScratchLookup,
         queries: &[TableQuery],
     ) -> Result<Dispatched<f32>> {
-        let entry = match Model::from_u32(params.model) {
+        let model = Model::try_from(params.model).map_err(|e| SpirvError::BadInput {
+            entry: "table".into(),
+            index: 0,
+            problem: format!("params.model: {e}"),
+        })?;
+        let entry = match model {
             Model::Werner => "table_werner",
             Model::WernerBlended => "table_werner_blended",
             Model::Velinov => "table_velinov",

@@ -1,5 +1,5 @@
-//! BRDF and footprint tables: lavapipe against the CPU backend's scalar path, which runs
-//! the same kernel function.
+//! BRDF and footprint tables: lavapipe against the same kernel functions called in a plain
+//! loop on the CPU (what the CPU backend's scalar path does).
 //!
 //! Tolerance (issue #3): relative difference ≤ 1e-4 wherever the value exceeds 1e-6 of
 //! the case's maximum. The two sides differ only in libm vs. GLSL.std.450 transcendentals
@@ -9,15 +9,22 @@
 
 mod common;
 
-use scratchwave_cpu::table::evaluate_ghs_table;
-use scratchwave_cpu::{Backend, evaluate_table, footprint_table};
+use scratchwave_host::{FootprintRow, ScratchLookup};
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::ghs::layers::LayerForm;
 use scratchwave_kernel::ghs::{DiffColor, GhsParams, Layer, presets};
+use scratchwave_kernel::material::{FresnelAngle, Material};
 use scratchwave_kernel::scratch::{Profile, Scratch};
-use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate, evaluate_ghs};
 
 const REL_TOL: f32 = 1e-4;
+
+/// The kernel's table value per query on the CPU, through the same BVH lookup.
+fn cpu_table(params: &TableParams, scratches: &[Scratch], queries: &[TableQuery]) -> Vec<f32> {
+    let lookup = ScratchLookup::new(scratches, params.sigma_um);
+    let set = lookup.set();
+    queries.iter().map(|q| evaluate(params, q, &set)).collect()
+}
 const FLOOR: f32 = 1e-6;
 
 /// A few scratches around the origin: both profiles, crossing, one degenerate (zero length),
@@ -121,7 +128,7 @@ fn tables_agree_with_the_cpu_backend() {
                 sigma_um: 10.0,
                 ..Default::default()
             };
-            let cpu = evaluate_table(Backend::Scalar, &params, &scratches, &queries);
+            let cpu = cpu_table(&params, &scratches, &queries);
             let gpu_out = gpu
                 .evaluate_table(&params, &scratches, &queries)
                 .unwrap()
@@ -142,7 +149,7 @@ fn a_table_without_scratches_is_the_flat_base() {
         sigma_um: 10.0,
         ..Default::default()
     };
-    let cpu = evaluate_table(Backend::Scalar, &params, &[], &queries);
+    let cpu = cpu_table(&params, &[], &queries);
     let gpu_out = gpu.evaluate_table(&params, &[], &queries).unwrap().output;
     let (rel, at) = max_rel_diff(&cpu, &gpu_out);
     assert!(rel <= REL_TOL, "rel diff {rel:e} at query {at}");
@@ -169,9 +176,12 @@ fn footprint_tables_agree_with_the_cpu_backend() {
         }
     }
     let sigma = 10.0;
-    let cpu = footprint_table(Backend::Scalar, sigma, &pairs);
+    let cpu: Vec<FootprintRow> = pairs
+        .iter()
+        .map(|(s, e)| FootprintRow::of(s, e, sigma))
+        .collect();
     let gpu_rows = gpu.footprint_table(sigma, &pairs).unwrap().output;
-    type Column = fn(&scratchwave_cpu::FootprintRow) -> f32;
+    type Column = fn(&FootprintRow) -> f32;
     let columns: [(&str, Column); 4] = [
         ("eq15", |r| r.eq15),
         ("eq16", |r| r.eq16),
@@ -211,7 +221,7 @@ fn ghs_tables_agree_with_the_cpu_backend() {
         ),
     ];
     for params in materials {
-        let cpu = evaluate_ghs_table(Backend::Scalar, &params, &queries);
+        let cpu: Vec<f32> = queries.iter().map(|q| evaluate_ghs(&params, q)).collect();
         let gpu_out = gpu.evaluate_ghs_table(&params, &queries).unwrap().output;
         assert_agree(&format!("ghs {params:?}"), &cpu, &gpu_out);
     }

@@ -9,6 +9,7 @@ use scratchwave_cpu::Backend;
 use scratchwave_cpu::parallel::map;
 use scratchwave_kernel::ghs::{self, GhsParams, presets};
 use scratchwave_kernel::glam::{Vec2, Vec3};
+use scratchwave_kernel::sampling::ghs as gs;
 use std::hint::black_box;
 
 const N: usize = 16_384;
@@ -90,7 +91,7 @@ fn bench(c: &mut Criterion) {
             g.bench_function(bname, |bch| {
                 bch.iter(|| {
                     map(b, &q, |&(wi, _, u)| {
-                        ghs::sample(black_box(&p), wi, u[0], Vec2::new(u[1], u[2]), 0.526)
+                        gs::sample(black_box(&p), wi, u[0], Vec2::new(u[1], u[2]), 0.526)
                             .map_or(0.0, |s| s.weight)
                     })
                 })

@@ -4,8 +4,8 @@
 //! sphere and a 4-gon and a 16-gon, per Si method and band rule, over 4096 seeded views
 //! (minimum of 9 passes).
 
-use scratchwave_cpu::light_configs::{LightCase, Rng, SweepRanges, random_case};
 use scratchwave_kernel::lights::{Light, SiMode};
+use scratchwave_testkit::light_configs::{LightCase, Rng, SweepRanges, random_case};
 use std::time::Instant;
 
 /// ns per query: the fastest of 9 passes over `cases` (the machine is shared).

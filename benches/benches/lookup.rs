@@ -6,7 +6,7 @@
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::Vec2;
 use scratchwave_benches::Rng;
-use scratchwave_cpu::ScratchLookup;
+use scratchwave_host::ScratchLookup;
 use scratchwave_kernel::scratch::{Scratch, ScratchSet, ScratchSlice};
 use std::time::Duration;
 

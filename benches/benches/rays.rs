@@ -15,12 +15,12 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use rayon::prelude::*;
-use scratchwave_cpu::fixtures::{
+use scratchwave_embree::{Device, Scene, SceneBuilder, SegmentIndex};
+use scratchwave_host::{Coherence, RayQueries, SegmentBvh, SegmentRadiusQuery, TriangleBvh};
+use scratchwave_kernel::ray::{Hit, Ray};
+use scratchwave_testkit::fixtures::{
     camera_rays, random_points, random_rays, scratch_field, sphere_with,
 };
-use scratchwave_cpu::{Coherence, RayQueries, SegmentBvh, SegmentRadiusQuery, TriangleBvh};
-use scratchwave_embree::{Device, Scene, SceneBuilder, SegmentIndex};
-use scratchwave_kernel::ray::{Hit, Ray};
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -8,36 +8,27 @@
 
 pub mod svg;
 
-pub use scratchwave_cpu::fixtures::SplitMix64 as Rng;
-use scratchwave_kernel::scratch::{Profile, Scratch};
-use scratchwave_kernel::table::{Material, TableQuery};
+use scratchwave_host::generate::{HalfLength, ProfileMix, ScratchRecipe, Uniform};
+pub use scratchwave_host::rng::SplitMix64 as Rng;
+use scratchwave_kernel::material::Material;
+use scratchwave_kernel::scratch::Scratch;
+use scratchwave_kernel::table::TableQuery;
 
 /// `n` scratches crossing the coherence window around the origin (all within 2σ), random
-/// orientations, widths 0.5–3 µm, depths 0.05–0.5 µm, both profiles.
+/// orientations, half lengths 1–5σ, widths 0.5–3 µm, depths 0.05–0.5 µm, both profiles.
 pub fn scratches_in_window(n: usize, sigma: f32, seed: u64) -> Vec<Scratch> {
-    let mut r = Rng::new(seed);
-    (0..n)
-        .map(|i| {
-            let a = std::f32::consts::TAU * r.next_f32();
-            let c = [
-                (r.next_f32() - 0.5) * 2.0 * sigma,
-                (r.next_f32() - 0.5) * 2.0 * sigma,
-            ];
-            let h = sigma * (1.0 + 4.0 * r.next_f32());
-            Scratch {
-                center: c,
-                tangent: [a.cos(), a.sin()],
-                half_len: h,
-                width: 0.5 + 2.5 * r.next_f32(),
-                depth: 0.05 + 0.45 * r.next_f32(),
-                profile: if i % 2 == 0 {
-                    Profile::Rect as u32
-                } else {
-                    Profile::Triangle as u32
-                },
-            }
-        })
-        .collect()
+    ScratchRecipe {
+        count: n,
+        unit: sigma,
+        center: [0.0, 0.0],
+        side: 2.0,
+        outliers: None,
+        half_length: HalfLength::Uniform(Uniform::new(1.0, 4.0)),
+        width: Uniform::new(0.5, 2.5),
+        depth: Uniform::new(0.05, 0.45),
+        profile: ProfileMix::Alternate,
+    }
+    .generate(&mut Rng::new(seed))
 }
 
 /// `n` queries around the specular direction of a 30° incidence (where diffraction is).

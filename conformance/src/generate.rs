@@ -5,16 +5,18 @@
 //! (cancellation in |B − S|²), across scratches on sinc zeros, grazing (z = 1e-3) and
 //! below-horizon directions, far segments (up to 20σ), λ at 380 and 780 nm.
 
-use crate::error::SpecError;
-use crate::json::Obj;
-use crate::spec::{TableSpec, table_spec};
-use scratchwave_cpu::fixtures::SplitMix64;
-use scratchwave_kernel::scratch::{Profile, Scratch};
-use scratchwave_kernel::table::{FresnelAngle, Material, TableQuery};
+use scratchwave_host::TableBatch;
+use scratchwave_host::generate::{HalfLength, ProfileMix, ScratchRecipe, Uniform};
+use scratchwave_host::rng::SplitMix64;
+use scratchwave_kernel::material::{FresnelAngle, Material};
+use scratchwave_kernel::table::TableQuery;
+use scratchwave_spec::SpecError;
+use scratchwave_spec::json::Obj;
+use scratchwave_spec::spec::table_spec;
 use serde_json::Value;
 
 /// Expands `{"seed", "queries", "scratches", "base": <spec without scratches/queries>}`.
-pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
+pub fn random_spec(v: &Value, path: &str) -> Result<TableBatch, SpecError> {
     let o = Obj::new(v, path, &["seed", "queries", "scratches", "base"])?;
     let seed = o.integer("seed", 1e15)?;
     let nq = o.integer("queries", 1e7)? as usize;
@@ -32,29 +34,18 @@ pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
     })?;
     let sigma = spec.params.sigma_um;
     let mut r = SplitMix64::new(seed);
-    spec.scratches = (0..ns)
-        .map(|i| {
-            let far = if i % 7 == 6 { 20.0 } else { 2.0 };
-            let c = [
-                (r.next_f32() - 0.5) * far * sigma,
-                (r.next_f32() - 0.5) * far * sigma,
-            ];
-            let a = std::f32::consts::TAU * r.next_f32();
-            let h = sigma * [0.05, 0.5, 3.0, 500.0][i % 4];
-            Scratch {
-                center: c,
-                tangent: [a.cos(), a.sin()],
-                half_len: h,
-                width: 0.3 + 3.0 * r.next_f32(),
-                depth: 0.02 + 0.6 * r.next_f32(),
-                profile: if i % 2 == 0 {
-                    Profile::Rect as u32
-                } else {
-                    Profile::Triangle as u32
-                },
-            }
-        })
-        .collect();
+    spec.scratches = ScratchRecipe {
+        count: ns,
+        unit: sigma,
+        center: [0.0, 0.0],
+        side: 2.0,
+        outliers: Some((7, 20.0)),
+        half_length: HalfLength::Cycle(&[0.05, 0.5, 3.0, 500.0]),
+        width: Uniform::new(0.3, 3.0),
+        depth: Uniform::new(0.02, 0.6),
+        profile: ProfileMix::Alternate,
+    }
+    .generate(&mut r);
     let first = spec.scratches.first().copied();
     spec.queries = (0..nq)
         .map(|i| {
@@ -111,6 +102,6 @@ pub fn random_spec(v: &Value, path: &str) -> Result<TableSpec, SpecError> {
 }
 
 /// The spec-level material the base declared (the generator needs it before any query).
-fn spec_material(spec: &TableSpec) -> Material {
+fn spec_material(spec: &TableBatch) -> Material {
     spec.default_material
 }

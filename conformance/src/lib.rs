@@ -1,18 +1,14 @@
 //! # scratchwave-conformance
 //!
-//! The `scratchwave` command line (`run`, `table`, `footprint`) and the library behind it:
-//! strict JSON spec readers that name the offending field, `%.9g` output, and the
+//! The `scratchwave` command line (`run`, `table`, `footprint`, `light`) and the library
+//! behind it: `%.9g` output, the conformance recipes (seeded table and light cases) and the
 //! conformance run that compares every backend with the committed high-precision
-//! references.
+//! references. The spec readers are `scratchwave-spec`; the backend interface is
+//! `scratchwave-host`'s `TableBackend`.
 
 pub mod backends;
-pub mod error;
 pub mod format;
 pub mod generate;
-pub mod json;
 pub mod light_case;
 pub mod light_spec;
 pub mod run;
-pub mod spec;
-
-pub use error::SpecError;

@@ -3,29 +3,19 @@
 //!
 //! A case file holds the recipe `{"random_lights": {"seed", "queries", "eta", "bands",
 //! "si"}}` and this module expands it: each query is one configuration of the accuracy
-//! sweep (`scratchwave_cpu::light_configs`: spheres with either cone, 3–8-gons tilted up to
+//! sweep (`scratchwave_testkit::light_configs`: spheres with either cone, 3–8-gons tilted up to
 //! 50°, partly below the horizon, every scratch orientation), laid out by
 //! `light_configs::grid_batch` so one BVH holds all scratches and each query sees exactly
 //! its own; odd queries use the V-groove (triangle) profile, which the kernel integrates
 //! numerically across the band.
 
-use crate::error::SpecError;
-use crate::json::Obj;
-use scratchwave_cpu::light_configs::{Rng, SweepRanges, grid_batch};
-use scratchwave_kernel::lights::{LightParams, LightQuery, SiMode};
-use scratchwave_kernel::scratch::{EtaMode, Scratch};
+use scratchwave_host::LightBatch;
+use scratchwave_kernel::lights::{LightParams, SiMode};
+use scratchwave_kernel::scratch::EtaMode;
+use scratchwave_spec::SpecError;
+use scratchwave_spec::json::Obj;
+use scratchwave_testkit::light_configs::{Rng, SweepRanges, grid_batch};
 use serde_json::Value;
-
-/// A batch of light queries over one scratch set.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LightBatch {
-    /// Options shared by every query.
-    pub params: LightParams,
-    /// The scratches (one per query here).
-    pub scratches: Vec<Scratch>,
-    /// The queries.
-    pub queries: Vec<LightQuery>,
-}
 
 /// Expands `{"seed", "queries", "eta": "finite"|"infinite", "bands": 1|3|5|20,
 /// "si": "exact"|"velinov"|"fast"}` (`eta`, `bands`, `si` optional: finite, 1, exact).

@@ -20,18 +20,16 @@
 //! (exact for polygons star-shaped about it). Columns: the closed form with the exact Si,
 //! with Eq. 29's Si, the adaptive-quadrature reference and its error estimate.
 
-use crate::backends::Cpu;
-use crate::error::SpecError;
 use crate::format::g9;
-use crate::json::{self, Obj};
-use crate::light_case::LightBatch;
-use crate::run::TableBackend;
-use crate::spec::table_spec;
-use scratchwave_cpu::Backend;
-use scratchwave_cpu::light_reference::light_reference;
 use scratchwave_cpu::parallel::map;
+use scratchwave_cpu::{Backend, Cpu};
+use scratchwave_host::{BackendError, LightBatch, TableBackend};
 use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, MAX_VERTICES, SiMode};
 use scratchwave_kernel::scratch::Scratch;
+use scratchwave_spec::SpecError;
+use scratchwave_spec::json::{self, Obj};
+use scratchwave_spec::spec::table_spec;
+use scratchwave_testkit::light_reference::light_reference;
 use serde_json::{Value, json};
 
 /// A parsed light spec.
@@ -208,9 +206,11 @@ fn light(v: &Value, path: &str) -> Result<Vec<Light>, SpecError> {
 pub type LightRow = (f32, f32, f64, f64);
 
 /// Evaluates every query: the closed forms on `backend` (any [`TableBackend`], the GPU
-/// included), the reference on the CPU, in parallel. A backend failure is returned as its
-/// message.
-pub fn light_rows(spec: &LightSpec, backend: &dyn TableBackend) -> Result<Vec<LightRow>, String> {
+/// included), the reference on the CPU, in parallel.
+pub fn light_rows(
+    spec: &LightSpec,
+    backend: &dyn TableBackend,
+) -> Result<Vec<LightRow>, BackendError> {
     // Flatten the fans into one batch; `owner[i]` is the spec query of batch query `i`.
     let (owner, queries): (Vec<usize>, Vec<LightQuery>) = spec
         .queries
@@ -223,7 +223,7 @@ pub fn light_rows(spec: &LightSpec, backend: &dyn TableBackend) -> Result<Vec<Li
         scratches: vec![spec.scratch],
         queries,
     };
-    let mut closed = |si: SiMode| -> Result<Vec<f32>, String> {
+    let mut closed = |si: SiMode| -> Result<Vec<f32>, BackendError> {
         batch.params.si_mode = si as u32;
         let mut sums = vec![0.0f32; spec.queries.len()];
         for (i, v) in owner.iter().zip(backend.evaluate_light(&batch)?) {
@@ -251,7 +251,7 @@ pub fn light_csv(spec: &LightSpec) -> String {
 }
 
 /// [`light_csv`] with the closed forms on `backend`.
-pub fn light_csv_on(spec: &LightSpec, backend: &dyn TableBackend) -> Result<String, String> {
+pub fn light_csv_on(spec: &LightSpec, backend: &dyn TableBackend) -> Result<String, BackendError> {
     let mut out = String::from("closed_exact_si,closed_approx_si,reference,reference_err\n");
     for (a, b, r, e) in light_rows(spec, backend)? {
         out += &format!(

@@ -3,9 +3,10 @@
 //! Exit codes: 0 success, 1 a conformance disagreement, 2 bad input (the message names the
 //! file or field; nothing is written to stdout).
 
-use scratchwave_conformance::error::SpecError;
 use scratchwave_conformance::format::g9;
-use scratchwave_conformance::{backends, json, run, spec};
+use scratchwave_conformance::{backends, run};
+use scratchwave_host::{BackendError, CaseBatch, TableBatch};
+use scratchwave_spec::{SpecError, json, spec};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -37,7 +38,7 @@ fn main() -> ExitCode {
 enum Failure {
     Usage(String),
     Spec(SpecError),
-    Backend(String),
+    Backend(BackendError),
 }
 
 impl From<SpecError> for Failure {
@@ -110,7 +111,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             if which == "all" {
                 return table_all(&s);
             }
-            let b = backends::by_name(which).map_err(Failure::Usage)?;
+            let b = backends::by_name(which).map_err(|e| Failure::Usage(e.to_string()))?;
             let values = b.evaluate(&s).map_err(Failure::Backend)?;
             let mut out = String::with_capacity(values.len() * 16);
             for v in values {
@@ -125,7 +126,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             let file = one_file(&pos, "light")?;
             let which = flag(&flags, "backend").unwrap_or("cpu");
             let s = scratchwave_conformance::light_spec::light_spec(&read_json(file)?)?;
-            let b = backends::by_name(which).map_err(Failure::Usage)?;
+            let b = backends::by_name(which).map_err(|e| Failure::Usage(e.to_string()))?;
             let csv = scratchwave_conformance::light_spec::light_csv_on(&s, b.as_ref())
                 .map_err(Failure::Backend)?;
             print!("{csv}");
@@ -136,10 +137,8 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             let file = one_file(&pos, "footprint")?;
             let which = flag(&flags, "backend").unwrap_or("cpu");
             let s = spec::footprint_spec(&read_json(file)?)?;
-            let b = backends::by_name(which).map_err(Failure::Usage)?;
-            let rows = b
-                .evaluate_footprint(s.sigma_um, &s.queries)
-                .map_err(Failure::Backend)?;
+            let b = backends::by_name(which).map_err(|e| Failure::Usage(e.to_string()))?;
+            let rows = b.evaluate_footprint(&s).map_err(Failure::Backend)?;
             let mut out = String::from("eq15,eq16,accurate,rho_p\n");
             for r in rows {
                 let f = |v: f32| g9(f64::from(v));
@@ -186,7 +185,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
 
 /// `--backend all`: every available backend, pairwise max abs/rel differences; exit 1 beyond
 /// the default tolerance.
-fn table_all(s: &spec::TableSpec) -> Result<ExitCode, Failure> {
+fn table_all(s: &TableBatch) -> Result<ExitCode, Failure> {
     let (list, notes) = backends::available();
     for n in &notes {
         eprintln!("note: {n}");
@@ -194,7 +193,7 @@ fn table_all(s: &spec::TableSpec) -> Result<ExitCode, Failure> {
     let case = run::Case {
         name: "spec".into(),
         description: String::new(),
-        spec: run::CaseSpec::Table(s.clone()),
+        spec: CaseBatch::Table(s.clone()),
         expected: None,
         rel_tol: run::DEFAULT_REL_TOL,
         why: String::new(),

@@ -1,15 +1,12 @@
 //! The conformance run: every committed case on every available backend, compared with the
 //! case's high-precision reference values (where it has them) and pairwise across backends.
 
-use crate::error::SpecError;
 use crate::format::g;
 use crate::generate::random_spec;
-use crate::json;
-use crate::light_case::{LightBatch, random_light_batch};
-use crate::spec::{TableSpec, table_spec};
-use scratchwave_cpu::FootprintRow;
-use scratchwave_kernel::footprint::Ellipse;
-use scratchwave_kernel::scratch::Scratch;
+use crate::light_case::random_light_batch;
+use scratchwave_host::{CaseBatch, TableBackend};
+use scratchwave_spec::spec::table_spec;
+use scratchwave_spec::{SpecError, json};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
@@ -20,53 +17,6 @@ pub const DEFAULT_REL_TOL: f64 = 1e-4;
 /// to the maximum.
 pub const FLOOR: f64 = 1e-6;
 
-/// A backend that evaluates table specs and light batches.
-pub trait TableBackend {
-    /// Short name (`cpu`, `simd`, `spirv`).
-    fn name(&self) -> String;
-    /// One value per query, in order.
-    fn evaluate(&self, spec: &TableSpec) -> Result<Vec<f32>, String>;
-    /// One light integral per query, in order.
-    fn evaluate_light(&self, batch: &LightBatch) -> Result<Vec<f32>, String>;
-    /// One footprint row per `(scratch, ellipse)` query, in order.
-    fn evaluate_footprint(
-        &self,
-        sigma: f32,
-        queries: &[(Scratch, Ellipse)],
-    ) -> Result<Vec<FootprintRow>, String>;
-    /// One value per query of a case's spec, whichever kind it is.
-    fn evaluate_case(&self, spec: &CaseSpec) -> Result<Vec<f32>, String> {
-        match spec {
-            CaseSpec::Table(t) => self.evaluate(t),
-            CaseSpec::Light(l) => self.evaluate_light(l),
-        }
-    }
-}
-
-/// What a case evaluates: a BRDF table or a batch of light integrals.
-#[derive(Clone, Debug, PartialEq)]
-pub enum CaseSpec {
-    /// `scratchwave table` queries.
-    Table(TableSpec),
-    /// Area-light queries ([`crate::light_case`]).
-    Light(LightBatch),
-}
-
-impl CaseSpec {
-    /// Number of queries.
-    pub fn len(&self) -> usize {
-        match self {
-            CaseSpec::Table(t) => t.queries.len(),
-            CaseSpec::Light(l) => l.queries.len(),
-        }
-    }
-
-    /// Whether there are no queries.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-}
-
 /// A committed case: a table spec (given or generated), optional reference values and the
 /// tolerance it declares, with the reason.
 pub struct Case {
@@ -75,7 +25,7 @@ pub struct Case {
     /// What the case exercises.
     pub description: String,
     /// The expanded spec.
-    pub spec: CaseSpec,
+    pub spec: CaseBatch,
     /// Reference values (mpmath), one per query, if the case has them.
     pub expected: Option<Vec<f64>>,
     /// Relative tolerance above the floor.
@@ -185,11 +135,11 @@ pub fn load_case(f: &Path) -> Result<Case, SpecError> {
     )?;
     let spec = match (o.get("spec"), o.get("random"), o.get("random_lights")) {
         (Some(s), None, None) => {
-            CaseSpec::Table(table_spec(s).map_err(|e| prefix(e, &o.path_of("spec")))?)
+            CaseBatch::Table(table_spec(s).map_err(|e| prefix(e, &o.path_of("spec")))?)
         }
-        (None, Some(r), None) => CaseSpec::Table(random_spec(r, &o.path_of("random"))?),
+        (None, Some(r), None) => CaseBatch::Table(random_spec(r, &o.path_of("random"))?),
         (None, None, Some(r)) => {
-            CaseSpec::Light(random_light_batch(r, &o.path_of("random_lights"))?)
+            CaseBatch::Light(random_light_batch(r, &o.path_of("random_lights"))?)
         }
         _ => {
             return Err(SpecError::field(
@@ -283,7 +233,7 @@ pub fn run_case(case: &Case, backends: &[Box<dyn TableBackend>]) -> CaseReport {
     for b in backends {
         match b.evaluate_case(&case.spec) {
             Ok(v) => outputs.push((b.name(), v.into_iter().map(f64::from).collect())),
-            Err(e) => errors.push((b.name(), e)),
+            Err(e) => errors.push((b.name(), e.to_string())),
         }
     }
     let mut rows = Vec::new();

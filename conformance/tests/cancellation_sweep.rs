@@ -13,10 +13,8 @@
 //! 1e-2 to 3e-3 at 1e-4. A formula that lost accuracy in a way not explained by the
 //! conditioning would break the bound. Run with `--nocapture` for the per-depth table.
 
-use scratchwave_conformance::backends::{Cpu, spirv};
-use scratchwave_conformance::run::TableBackend;
-use scratchwave_conformance::spec::table_spec;
-use scratchwave_cpu::Backend;
+use scratchwave_conformance::backends::available;
+use scratchwave_spec::spec::table_spec;
 use serde_json::Value;
 
 /// The bound's constant: error ≤ K · A · u.
@@ -47,11 +45,9 @@ fn error_stays_within_the_conditioning_bound() {
         floats(&v, "amplification"),
     );
     assert_eq!(expected.len(), spec.queries.len());
-    let mut backends: Vec<Box<dyn TableBackend>> =
-        vec![Box::new(Cpu(Backend::Scalar)), Box::new(Cpu(Backend::Simd))];
-    match spirv() {
-        Ok(g) => backends.push(Box::new(g)),
-        Err(e) => eprintln!("spirv skipped: {e}"),
+    let (backends, notes) = available();
+    for n in notes {
+        eprintln!("{n}");
     }
     let results: Vec<(String, Vec<f32>)> = backends
         .iter()

@@ -2,9 +2,9 @@
 //! CPU backends within each case's tolerance. The full run over every backend, including the
 //! 10^5–10^6-query cases and SPIR-V, is `scratchwave run` (scripts/test.sh runs it too).
 
-use scratchwave_conformance::backends::Cpu;
-use scratchwave_conformance::run::{TableBackend, load_case, markdown, run_case};
-use scratchwave_cpu::Backend;
+use scratchwave_conformance::run::{load_case, markdown, run_case};
+use scratchwave_cpu::{Backend, Cpu};
+use scratchwave_host::TableBackend;
 use std::path::PathBuf;
 
 fn files(dir: &str) -> Vec<PathBuf> {

@@ -3,10 +3,9 @@
 //! reference column within the per-query tolerances below, and within 1 % everywhere with
 //! the 3-band Gauss–Hermite rule.
 
-use scratchwave_conformance::SpecError;
-use scratchwave_conformance::backends::Cpu;
 use scratchwave_conformance::light_spec::{light_csv, light_rows, light_spec};
-use scratchwave_cpu::Backend;
+use scratchwave_cpu::{Backend, Cpu};
+use scratchwave_spec::SpecError;
 use serde_json::json;
 
 /// Per query: in query 2 the band crosses near the edge of the light (Eq. 27's single band

@@ -243,7 +243,7 @@ fn push_break(br: &mut [f32; MAX_BREAKS], n: &mut usize, r: f32) {
 }
 
 /// Insertion sort of the first `n` entries (n ≤ MAX_BREAKS; no recursion for SPIR-V).
-// Slice methods such as `swap` are avoided in the kernel (rust-gpu limits, DESIGN.md).
+// Slice methods such as `swap` are avoided in the kernel (rust-gpu limits, ARCHITECTURE.md *What the kernel must avoid for SPIR-V*).
 #[allow(clippy::manual_swap)]
 fn sort(a: &mut [f32; MAX_BREAKS], n: usize) {
     let mut i = 1;

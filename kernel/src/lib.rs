@@ -10,7 +10,8 @@
 //!
 //! ```
 //! use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
-//! use scratchwave_kernel::table::{evaluate, Material, Model, TableParams, TableQuery};
+//! use scratchwave_kernel::material::Material;
+//! use scratchwave_kernel::table::{evaluate, Model, TableParams, TableQuery};
 //!
 //! // One 2 µm wide, 0.3 µm deep V-groove through the shading point, along x.
 //! let scratches = [Scratch::from_endpoints([-200.0, 0.0], [200.0, 0.0], 2.0, 0.3, Profile::Triangle)];
@@ -26,17 +27,22 @@
 #![no_std]
 #![cfg_attr(target_arch = "spirv", allow(internal_features))]
 
+#[macro_use]
+pub mod gpu_enum;
+
 pub mod bvh;
 pub mod footprint;
 pub mod fresnel;
 pub mod ghs;
 pub mod lights;
+pub mod material;
 pub mod math;
 pub mod ray;
 pub mod sampling;
 pub mod scratch;
-pub mod segment;
+pub mod segment2d;
 pub mod table;
+pub mod units;
 
 pub use glam;
 pub use num_complex;

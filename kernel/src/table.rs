@@ -7,112 +7,28 @@
 //! * `werner_blended`: `F/(πσ²λ²) |S|²` (Werner §5; the caller adds `(1 − ρc) f_base`);
 //! * `velinov`: `F/(A_C λ²) [Σ|S_k|² + (1 − ρc)|B|²·[base = gaussian]]` (Velinov Eqs. 6–7).
 
-use crate::fresnel::fresnel;
 use crate::ghs::g1::G1Table;
 use crate::ghs::{self, GhsParams};
+use crate::material::Material;
 use crate::math;
 use crate::scratch::{
     DepthTerm, EtaMode, ResponseInputs, ScratchSet, base_response, scratch_response,
 };
+use crate::units::{depth_half_turns_per_um, direction, um_from_nm, xi_of};
 use bytemuck::{Pod, Zeroable};
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 
-/// Which model a table evaluates.
-// `repr(u32)`: with three variants the default tag is a `u8`, which SPIR-V only has with
-// the Int8 capability (rust-gpu rejects the table entry points without it).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Model {
-    /// Coherent base + scratches (Werner Eq. 15).
-    Werner = 0,
-    /// Coherent scratches only, for blending with another base BRDF (Werner §5).
-    WernerBlended = 1,
-    /// Incoherent sum of single-scratch responses (Velinov Eq. 7).
-    Velinov = 2,
-}
-
-impl Model {
-    /// Decodes a `u32` (unknown → `Werner`; the std side validates first).
-    #[inline]
-    pub fn from_u32(v: u32) -> Model {
-        match v {
-            1 => Model::WernerBlended,
-            2 => Model::Velinov,
-            _ => Model::Werner,
-        }
+gpu_enum! {
+    /// Which model a table evaluates.
+    pub enum Model {
+        /// Coherent base + scratches (Werner Eq. 15).
+        Werner = 0,
+        /// Coherent scratches only, for blending with another base BRDF (Werner §5).
+        WernerBlended = 1,
+        /// Incoherent sum of single-scratch responses (Velinov Eq. 7).
+        Velinov = 2,
     }
-}
-
-/// Which angle the Fresnel term is evaluated at.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u32)]
-pub enum FresnelAngle {
-    /// θd: between `wi` and the half vector (default).
-    ThetaD = 0,
-    /// θi: between `wi` and the normal.
-    ThetaI = 1,
-    /// Normal incidence.
-    Normal = 2,
-}
-
-/// Material of one query: a constant reflectance or a complex IOR.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
-pub struct Material {
-    /// 0: constant `f`; 1: Fresnel of `n + ik`.
-    pub kind: u32,
-    /// A [`FresnelAngle`] as `u32` (kind 1 only).
-    pub fresnel_angle: u32,
-    /// Constant reflectance (kind 0).
-    pub f: f32,
-    /// Real part of the IOR (kind 1).
-    pub n: f32,
-    /// Imaginary part of the IOR (kind 1).
-    pub k: f32,
-    /// Explicit padding.
-    pub pad: [u32; 3],
-}
-
-const _: () = assert!(core::mem::size_of::<Material>() == 32);
-
-impl Material {
-    /// A constant reflectance `F`.
-    pub const fn constant(f: f32) -> Material {
-        Material {
-            kind: 0,
-            fresnel_angle: 0,
-            f,
-            n: 0.0,
-            k: 0.0,
-            pad: [0; 3],
-        }
-    }
-
-    /// Fresnel reflectance of `n + ik` at the given angle.
-    pub const fn ior(n: f32, k: f32, angle: FresnelAngle) -> Material {
-        Material {
-            kind: 1,
-            fresnel_angle: angle as u32,
-            f: 0.0,
-            n,
-            k,
-            pad: [0; 3],
-        }
-    }
-
-    /// The reflectance for unit directions `wi`, `wo`.
-    #[inline]
-    pub fn reflectance(&self, wi: Vec3, wo: Vec3) -> f32 {
-        if self.kind == 0 {
-            return self.f;
-        }
-        let cos = match self.fresnel_angle {
-            1 => wi.z,
-            2 => 1.0,
-            _ => wi.dot((wi + wo).normalize_or_zero()),
-        };
-        fresnel(cos, self.n, self.k)
-    }
+    fallback = Werner;
 }
 
 /// One table query. GPU-visible: 64 bytes.
@@ -156,52 +72,6 @@ pub struct TableParams {
 }
 
 const _: () = assert!(core::mem::size_of::<TableParams>() == 32);
-
-/// Directions whose squared length is within this of 1 are used as given (an f32-rounded
-/// unit vector is within 2^-23); others are normalised. Readers apply the same rule, so a
-/// direction that arrives as f32 values is never rounded twice (the mpmath reference mirrors
-/// it in `reference/refcore.py`).
-pub const UNIT_TOLERANCE: f32 = 4.0e-7;
-
-/// `v` as a unit vector under the [`UNIT_TOLERANCE`] rule (zero for a zero or non-finite
-/// vector).
-#[inline]
-pub fn direction(v: [f32; 3]) -> Vec3 {
-    let v = Vec3::from_array(v);
-    let l2 = v.length_squared();
-    if math::abs(l2 - 1.0) <= UNIT_TOLERANCE {
-        v
-    } else {
-        v.normalize_or_zero()
-    }
-}
-
-/// λ in µm from λ in nm, for the prefactors and band widths (`λ_nm · 0.001_f32`: its
-/// 4.7e-8 relative error is harmless there; the phases use [`xi_of`] and
-/// [`depth_half_turns_per_um`], which divide by `λ_nm` instead).
-#[inline]
-pub fn um_from_nm(lambda_nm: f32) -> f32 {
-    lambda_nm * 1.0e-3
-}
-
-/// `ξ = (wi + wo)_xy / λ` (1/µm; zero in the mirror direction) from λ in nm.
-///
-/// Written `1000 (wi + wo)_xy / λ_nm`: a division by the run-time `λ_nm`, which every
-/// target rounds correctly. The product `λ_nm · 0.001_f32` would put `0.001_f32`'s 4.7e-8
-/// relative error into every phase of a query with the same sign, an error the coherent sum
-/// does not average out (and spirv-opt rewrites a division by the constant 1000 into that
-/// product).
-#[inline]
-pub fn xi_of(wi: Vec3, wo: Vec3, lambda_nm: f32) -> Vec2 {
-    Vec2::new(wi.x + wo.x, wi.y + wo.y) * 1000.0 / lambda_nm
-}
-
-/// The depth phase per µm of groove depth in half-turns, `κ/(πD) = 2γ/λ` (1/µm), from `γ`
-/// and λ in nm, as `2000 γ / λ_nm` (a run-time division; see [`xi_of`]).
-#[inline]
-pub fn depth_half_turns_per_um(gamma: f32, lambda_nm: f32) -> f32 {
-    2000.0 * gamma / lambda_nm
-}
 
 /// Evaluates one query: the BRDF (1/sr, no cosine). Directions below the horizon (or
 /// degenerate) give 0; the result is finite and non-negative for every input.

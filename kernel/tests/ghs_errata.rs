@@ -1,4 +1,4 @@
-//! Numerical checks of the printed errata (DESIGN.md's list plus those found here). Each
+//! Numerical checks of the printed errata (the errata table in ARCHITECTURE.md plus those found here). Each
 //! test states the printed form, the corrected form, and what distinguishes them.
 
 use glam::{Vec2, Vec3};

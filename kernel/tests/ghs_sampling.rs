@@ -119,8 +119,8 @@ fn sample_reports_eval_and_pdf() {
         for _ in 0..20_000 {
             let wi = dir(rng.f() * 1.5, rng.f() * std::f32::consts::TAU);
             let (ul, u) = (rng.f(), Vec2::new(rng.f(), rng.f()));
-            if let Some(s) = ghs::sample(&params, wi, ul, u, lambda) {
-                let pdf = ghs::pdf(&params, wi, s.wo, lambda);
+            if let Some(s) = gs::sample(&params, wi, ul, u, lambda) {
+                let pdf = gs::pdf(&params, wi, s.wo, lambda);
                 let val = ghs::evaluate(&params, wi, s.wo, lambda);
                 assert!(
                     (s.pdf - pdf).abs() <= 1e-5 * pdf,

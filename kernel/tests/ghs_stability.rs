@@ -8,6 +8,7 @@ mod ghs_common;
 use ghs_common::Pcg;
 use glam::{Vec2, Vec3};
 use scratchwave_kernel::ghs::{self, GhsParams};
+use scratchwave_kernel::sampling::ghs as gs;
 
 fn log_uniform(r: &mut Pcg, lo: f32, hi: f32) -> f32 {
     (lo.ln() + r.f() * (hi.ln() - lo.ln())).exp()
@@ -99,13 +100,13 @@ fn no_nan_or_inf_over_a_million_adversarial_inputs() {
             }
         }
         if i % 4 == 0 {
-            let pdf = ghs::pdf(&p, wi, wo, lambda);
+            let pdf = gs::pdf(&p, wi, wo, lambda);
             if !(pdf.is_finite() && pdf >= 0.0) {
                 bad += 1;
                 println!("pdf {p:?} λ={lambda} wi={wi} wo={wo} → {pdf}");
             }
             let u = Vec2::new(r.f(), r.f());
-            if let Some(s) = ghs::sample(&p, wi, r.f(), u, lambda) {
+            if let Some(s) = gs::sample(&p, wi, r.f(), u, lambda) {
                 let ok = s.pdf.is_finite()
                     && s.pdf > 0.0
                     && s.value.is_finite()

@@ -1,8 +1,9 @@
 //! Physical invariants of the Werner/Velinov models, each checked against an independent
 //! f64 computation written here (never against the kernel's own output).
 
+use scratchwave_kernel::material::{FresnelAngle, Material};
 use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice, scratch_area_density};
-use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery, evaluate};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 use std::f64::consts::PI;
 
 fn params(model: Model, exact_depth: bool) -> TableParams {

@@ -6,8 +6,8 @@
 use scratchwave_kernel::lights::{
     BandRule, Cone, Light, LightParams, LightQuery, SiMode, light_integral,
 };
+use scratchwave_kernel::material::Material;
 use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
-use scratchwave_kernel::table::Material;
 
 /// From (−150, 2) to (150, 2) µm, W = 1 µm, D = 0.1 µm.
 const SCRATCH: Scratch = Scratch {

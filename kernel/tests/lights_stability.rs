@@ -4,8 +4,8 @@
 //! from above and below, r → 0, grazing views, views along the scratch).
 
 use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, light_integral};
+use scratchwave_kernel::material::{FresnelAngle, Material};
 use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
-use scratchwave_kernel::table::{FresnelAngle, Material};
 
 struct Rng(u64);
 impl Rng {

@@ -11,8 +11,9 @@
 //! model error Werner §6 describes), rising to 2.6 % next to the sinc zeros, where the
 //! numerical transform does not vanish. Tolerances: 1e-3 and 3e-2.
 
+use scratchwave_kernel::material::Material;
 use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
-use scratchwave_kernel::table::{Material, Model, TableParams, TableQuery, evaluate};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 use std::f64::consts::PI;
 
 const N: usize = 960;

@@ -10,8 +10,9 @@
 use scratchwave_kernel::footprint::{
     Ellipse, eta_p_accurate, eta_p_eq15, eta_p_eq16, rho_p_accurate,
 };
+use scratchwave_kernel::material::{FresnelAngle, Material};
 use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
-use scratchwave_kernel::table::{FresnelAngle, Material, Model, TableParams, TableQuery, evaluate};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 use std::f32::consts::PI;
 
 /// SplitMix64: a small deterministic generator (the test must be replayable).

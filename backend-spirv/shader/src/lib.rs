@@ -45,21 +45,15 @@ pub fn math_probe(
     }
 }
 
-/// [`Model`] ids as `u32` constants: `Model` has no `repr`, so a `Model` value in shader
-/// code would be a `u8`, which SPIR-V only has with the Int8 capability.
-const WERNER: u32 = Model::Werner as u32;
-const WERNER_BLENDED: u32 = Model::WernerBlended as u32;
-const VELINOV: u32 = Model::Velinov as u32;
-
-/// [`table::evaluate`] with the model fixed to `model` (a [`Model`] id): one BRDF value per
-/// query.
+/// [`table::evaluate`] with the model fixed to `model` (a `#[repr(u32)]` GPU enum, so it
+/// needs no Int8 capability): one BRDF value per query.
 ///
 /// The host uploads the CPU backend's lookup: BVH `nodes` and the scratches in slot order,
 /// and the kernel traverses them exactly as on the CPU ([`ScratchBvh`], a cursor-driven
 /// stackless walk with no closures capturing references, which rust-gpu cannot store).
 #[inline]
 fn table_entry(
-    model: u32,
+    model: Model,
     id: UVec3,
     params: &[TableParams],
     nodes: &[BvhNode],
@@ -69,7 +63,10 @@ fn table_entry(
 ) {
     let i = id.x as usize;
     if i < out.len() {
-        let params = TableParams { model, ..params[0] };
+        let params = TableParams {
+            model: model as u32,
+            ..params[0]
+        };
         out[i] = table::evaluate(&params, &queries[i], &ScratchBvh { nodes, scratches });
     }
 }
@@ -84,7 +81,7 @@ pub fn table_werner(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] queries: &[TableQuery],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] out: &mut [f32],
 ) {
-    table_entry(WERNER, id, params, nodes, scratches, queries, out);
+    table_entry(Model::Werner, id, params, nodes, scratches, queries, out);
 }
 
 /// BRDF table, Werner §5 (coherent scratches only, for blending with a base BRDF).
@@ -97,7 +94,15 @@ pub fn table_werner_blended(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] queries: &[TableQuery],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] out: &mut [f32],
 ) {
-    table_entry(WERNER_BLENDED, id, params, nodes, scratches, queries, out);
+    table_entry(
+        Model::WernerBlended,
+        id,
+        params,
+        nodes,
+        scratches,
+        queries,
+        out,
+    );
 }
 
 /// BRDF table, Velinov Eq. 7 (incoherent sum of single-scratch responses).
@@ -110,7 +115,7 @@ pub fn table_velinov(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] queries: &[TableQuery],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] out: &mut [f32],
 ) {
-    table_entry(VELINOV, id, params, nodes, scratches, queries, out);
+    table_entry(Model::Velinov, id, params, nodes, scratches, queries, out);
 }
 
 /// GHS table (Holzschuch & Pacanowski): [`table::evaluate_ghs_with_g1_table`], reading the

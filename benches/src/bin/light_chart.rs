@@ -6,7 +6,7 @@
 //! error_vs_size.svg}` and
 //! prints the summary tables of `docs/lights.md`.
 //!
-//! Cases: the seeded sweep of `scratchwave_cpu::light_configs` (spheres with asin/atan cones
+//! Cases: the seeded sweep of `scratchwave_testkit::light_configs` (spheres with asin/atan cones
 //! and jittered 3–8-gons, α 0.05–0.6 rad, centre elevation from −0.7α (partly below the
 //! horizon) to 1.5 rad, distances 1–100, all scratch orientations, λ 380–780 nm, W 0.2–5 µm,
 //! infinite scratch, σ = 10 µm), each with the band crossing the light. Error: |value/ref − 1|
@@ -15,10 +15,10 @@
 
 use rayon::prelude::*;
 use scratchwave_benches::svg::{Series, loglog};
-use scratchwave_cpu::light_configs::{LightCase, Rng, SweepRanges, random_case};
-use scratchwave_cpu::light_mc::light_mc;
-use scratchwave_cpu::light_reference::light_reference_budget;
 use scratchwave_kernel::lights::SiMode;
+use scratchwave_testkit::light_configs::{LightCase, Rng, SweepRanges, random_case};
+use scratchwave_testkit::light_mc::light_mc;
+use scratchwave_testkit::light_reference::light_reference_budget;
 use std::fmt::Write;
 use std::time::Instant;
 

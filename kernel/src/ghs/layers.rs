@@ -24,26 +24,15 @@
 use crate::fresnel::fresnel;
 use crate::math;
 
-/// Which form of the layer equations to evaluate.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u32)]
-pub enum LayerForm {
-    /// As printed in the paper.
-    Published = 0,
-    /// With the corrections listed in the module documentation.
-    EnergyConserving = 1,
-}
-
-impl LayerForm {
-    /// Decodes a `u32` (unknown → `Published`).
-    #[inline]
-    pub fn from_u32(v: u32) -> LayerForm {
-        if v == 1 {
-            LayerForm::EnergyConserving
-        } else {
-            LayerForm::Published
-        }
+gpu_enum! {
+    /// Which form of the layer equations to evaluate.
+    pub enum LayerForm {
+        /// As printed in the paper.
+        Published = 0,
+        /// With the corrections listed in the module documentation.
+        EnergyConserving = 1,
     }
+    fallback = Published;
 }
 
 /// First Fresnel moment `C1(η) = ∫₀¹ F(μ; η) μ dμ` (d'Eon & Irving 2011 fit; `η` is the

@@ -39,57 +39,32 @@ use layers::LayerForm;
 use ndf::GenBeckmann;
 use spread::KCorrelation;
 
-pub use crate::sampling::ghs::{pdf, sample};
-
-/// Diffraction-lobe colour (`diff_color`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u32)]
-pub enum DiffColor {
-    /// `Q/2` (equals `F` in the specular direction). Default.
-    HalfQ = 0,
-    /// `Q` as printed in Eq. 27.
-    Q = 1,
-    /// `F(θd)`, as Löw et al. 2012 substitute.
-    Fresnel = 2,
-    /// No colour factor (Eq. 36 as printed).
-    None = 3,
-}
-
-impl DiffColor {
-    /// Decodes a `u32` (unknown → `HalfQ`).
-    #[inline]
-    pub fn from_u32(v: u32) -> DiffColor {
-        match v {
-            1 => DiffColor::Q,
-            2 => DiffColor::Fresnel,
-            3 => DiffColor::None,
-            _ => DiffColor::HalfQ,
-        }
+gpu_enum! {
+    /// Diffraction-lobe colour (`diff_color`).
+    pub enum DiffColor {
+        /// `Q/2` (equals `F` in the specular direction). Default.
+        HalfQ = 0,
+        /// `Q` as printed in Eq. 27.
+        Q = 1,
+        /// `F(θd)`, as Löw et al. 2012 substitute.
+        Fresnel = 2,
+        /// No colour factor (Eq. 36 as printed).
+        None = 3,
     }
+    fallback = HalfQ;
 }
 
-/// Layer under the rough interface (`layer`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u32)]
-pub enum Layer {
-    /// Single interface (conductors, or a dielectric without a diffuse body).
-    None = 0,
-    /// Diffuse base of reflectance `ρd` under a varnish (Eq. 49).
-    Plastic = 1,
-    /// Participating medium of single-scattering albedo `α` (Eqs. 45–48).
-    Subsurface = 2,
-}
-
-impl Layer {
-    /// Decodes a `u32` (unknown → `None`).
-    #[inline]
-    pub fn from_u32(v: u32) -> Layer {
-        match v {
-            1 => Layer::Plastic,
-            2 => Layer::Subsurface,
-            _ => Layer::None,
-        }
+gpu_enum! {
+    /// Layer under the rough interface (`layer`).
+    pub enum Layer {
+        /// Single interface (conductors, or a dielectric without a diffuse body).
+        None = 0,
+        /// Diffuse base of reflectance `ρd` under a varnish (Eq. 49).
+        Plastic = 1,
+        /// Participating medium of single-scattering albedo `α` (Eqs. 45–48).
+        Subsurface = 2,
     }
+    fallback = None;
 }
 
 /// GPU-visible GHS material at one wavelength (`#[repr(C)]`, `Pod`, 48 bytes).

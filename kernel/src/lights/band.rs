@@ -19,30 +19,20 @@ use crate::math;
 
 use super::si_fast::si_fast_split;
 
-/// Which sine integral the band integral uses.
-// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SiMode {
-    /// [`math::si`], exact to f32.
-    Exact = 0,
-    /// Velinov's Eq. 29 ([`math::si_velinov`]).
-    Velinov = 1,
-    /// [`si_fast`](super::si_fast::si_fast) (|error| ≤ 6e-5, cheaper than `Exact`).
-    Fast = 2,
+gpu_enum! {
+    /// Which sine integral the band integral uses.
+    pub enum SiMode {
+        /// [`math::si`], exact to f32.
+        Exact = 0,
+        /// Velinov's Eq. 29 ([`math::si_velinov`]).
+        Velinov = 1,
+        /// [`si_fast`](super::si_fast::si_fast) (|error| ≤ 6e-5, cheaper than `Exact`).
+        Fast = 2,
+    }
+    fallback = Exact;
 }
 
 impl SiMode {
-    /// Decodes a `u32` (unknown → `Exact`).
-    #[inline]
-    pub fn from_u32(v: u32) -> SiMode {
-        match v {
-            1 => SiMode::Velinov,
-            2 => SiMode::Fast,
-            _ => SiMode::Exact,
-        }
-    }
-
     /// `Si(x)` by this method.
     #[inline]
     pub fn si(self, x: f32) -> f32 {

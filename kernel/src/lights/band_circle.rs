@@ -19,12 +19,9 @@
 //! so tangencies, vertices on the band ("a crossing on two arcs", Eq. 41) and spurious
 //! crossings with the unused part of a great circle need no special cases.
 
+use super::limits::MAX_BREAKPOINTS;
 use crate::math;
 use glam::{Vec2, Vec3};
-
-/// Capacity of a [`Breakpoints`] list: two crossings for each edge of the largest polygon
-/// plus the two ends of the half circle.
-pub const MAX_BREAKPOINTS: usize = 2 * super::polygon::MAX_VERTICES + 2;
 
 /// The band of one scratch for one view direction.
 #[derive(Clone, Copy, Debug)]

@@ -20,22 +20,30 @@
 //! over- or under-estimated (measured in `backend-cpu/tests/light_reference.rs`).
 
 use super::band::{SiMode, band_integral};
-use super::band_circle::{BandCircle, Breakpoints, MAX_BREAKPOINTS};
-use super::polygon::{MAX_VERTICES, SphericalPolygon};
+use super::band_circle::{BandCircle, Breakpoints};
+use super::limits::MAX_BREAKPOINTS;
+use super::limits::MAX_VERTICES;
+use super::polygon::SphericalPolygon;
 use super::sphere::{Cone, SphereCap};
+use crate::material::Material;
 use crate::math;
 use crate::math::quadrature::{GL4_W, GL4_X, GL8_W, GL8_X};
 use crate::scratch::profile::mask_minus_profile;
 use crate::scratch::response::CUTOFF_SIGMAS;
 use crate::scratch::{DepthTerm, EtaMode, NearCursor, Profile, Scratch, ScratchSet, SegmentFrame};
-use crate::table::Material;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 
-/// [`Light::kind`] of a sphere.
-pub const LIGHT_SPHERE: u32 = 0;
-/// [`Light::kind`] of a polygon.
-pub const LIGHT_POLYGON: u32 = 1;
+gpu_enum! {
+    /// The shape of an area light ([`Light::kind`]).
+    pub enum LightKind {
+        /// A sphere ([`Light::sphere`]).
+        Sphere = 0,
+        /// A planar convex polygon ([`Light::vertices`]).
+        Polygon = 1,
+    }
+    fallback = Sphere;
+}
 
 /// An area light, positions relative to the shading point in any one length unit (the
 /// shading point's own µm offset `x` is negligible against light distances and is not
@@ -43,7 +51,7 @@ pub const LIGHT_POLYGON: u32 = 1;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct Light {
-    /// [`LIGHT_SPHERE`] or [`LIGHT_POLYGON`].
+    /// A [`LightKind`] as `u32`.
     pub kind: u32,
     /// A [`Cone`] as `u32` (spheres).
     pub cone: u32,
@@ -69,7 +77,7 @@ impl Light {
     /// A sphere light.
     pub fn sphere(center: [f32; 3], radius: f32, cone: Cone) -> Light {
         Light {
-            kind: LIGHT_SPHERE,
+            kind: LightKind::Sphere as u32,
             cone: cone as u32,
             sphere: [center[0], center[1], center[2], radius],
             ..Light::default()
@@ -81,7 +89,7 @@ impl Light {
     #[cfg(not(target_arch = "spirv"))]
     pub fn polygon(vertices: &[[f32; 3]]) -> Light {
         let mut l = Light {
-            kind: LIGHT_POLYGON,
+            kind: LightKind::Polygon as u32,
             ..Light::default()
         };
         let mut i = 0;
@@ -141,7 +149,7 @@ const _: () = assert!(core::mem::size_of::<LightParams>() == 32);
 /// reaches SPIR-V).
 #[derive(Clone, Copy, Debug)]
 pub struct LightRegion {
-    /// [`LIGHT_SPHERE`] or [`LIGHT_POLYGON`].
+    /// A [`LightKind`] as `u32`.
     pub kind: u32,
     /// The cone (spheres).
     pub sphere: SphereCap,
@@ -153,12 +161,12 @@ impl LightRegion {
     /// The region of a light record, `None` if it is degenerate or below the horizon.
     pub fn new(light: &Light) -> Option<LightRegion> {
         let mut r = LightRegion {
-            kind: LIGHT_SPHERE,
+            kind: LightKind::Sphere as u32,
             sphere: SphereCap::EMPTY,
             polygon: SphericalPolygon::EMPTY,
         };
-        if light.kind == LIGHT_POLYGON {
-            r.kind = LIGHT_POLYGON;
+        if LightKind::from_u32(light.kind) == LightKind::Polygon {
+            r.kind = LightKind::Polygon as u32;
             r.polygon = SphericalPolygon::new(&light.vertices, light.count)?;
         } else {
             let s = light.sphere;
@@ -174,7 +182,7 @@ impl LightRegion {
     /// Whether the unit direction `w` is inside.
     #[inline]
     pub fn contains(&self, w: Vec3) -> bool {
-        if self.kind == LIGHT_POLYGON {
+        if LightKind::from_u32(self.kind) == LightKind::Polygon {
             self.polygon.contains(w)
         } else {
             self.sphere.contains(w)
@@ -184,7 +192,7 @@ impl LightRegion {
     /// Adds the band's boundary crossings.
     #[inline]
     pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
-        if self.kind == LIGHT_POLYGON {
+        if LightKind::from_u32(self.kind) == LightKind::Polygon {
             self.polygon.crossings(band, out)
         } else {
             self.sphere.crossings(band, out)
@@ -194,7 +202,7 @@ impl LightRegion {
     /// `[min, max]` of `u · w` over the light's directions (horizon not applied).
     #[inline]
     pub fn dot_range(&self, u: Vec3) -> (f32, f32) {
-        if self.kind == LIGHT_POLYGON {
+        if LightKind::from_u32(self.kind) == LightKind::Polygon {
             self.polygon.dot_range(u)
         } else {
             self.sphere.dot_range(u)
@@ -205,7 +213,7 @@ impl LightRegion {
     /// `u · w = c` has kinks: polygon vertices above the horizon, and the points where the
     /// light's boundary meets the horizon.
     pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
-        if self.kind == LIGHT_POLYGON {
+        if LightKind::from_u32(self.kind) == LightKind::Polygon {
             self.polygon.kinks(u, out)
         } else {
             self.sphere.kinks(u, out)
@@ -215,7 +223,7 @@ impl LightRegion {
     /// A representative direction (for `F` and `γ`), lifted above the horizon.
     #[inline]
     pub fn center(&self) -> Vec3 {
-        let c = if self.kind == LIGHT_POLYGON {
+        let c = if LightKind::from_u32(self.kind) == LightKind::Polygon {
             self.polygon.center
         } else {
             self.sphere.axis
@@ -224,50 +232,39 @@ impl LightRegion {
     }
 }
 
-/// How the ξ₁ direction (across the band) is integrated.
-///
-/// Velinov's Eq. 27 evaluates the light's chord on the single line ξ₁ = 0 and multiplies
-/// by the whole Gaussian `∫ e^{−4π²σ²ξ₁²} dξ₁`. That is exact only when the chord does not
-/// change across the band; where a light edge cuts the band at an angle, or the light is
-/// not much wider than the band (`α ≲ 10 λ/(2πσ)`), the chord's curvature in ξ₁ makes it
-/// over- or under-estimate. The Gauss–Hermite rules evaluate the chord on 3 or 5 parallel
-/// lines `ξ₁ = x_k s` (`s = 1/(2√2 πσ)`, the Gaussian's standard deviation) and weight
-/// them, which is exact for chords polynomial in ξ₁ up to degree 5 or 9. Chords are not
-/// polynomial where the band family leaves the light: the chord opens like a square root
-/// from the tangent band (and jumps where the band circle is small), which no Gauss–Hermite
-/// rule resolves (9 and 15 points were tried: 95.5 % and 97 % of the sweep within 1 %).
-/// [`BandRule::Extent`] instead finds the range of ξ₁ the light covers, cuts it at the
-/// chord's kinks (polygon corners, the horizon meeting the light) and integrates the
-/// Gaussian-weighted chord over each panel with an 8-point Gauss–Legendre rule in
-/// `1 − cos t`, which absorbs square roots and kinks at the panel ends; a light covering
-/// the whole window without a kink gets the 5-point Gauss–Hermite rule.
-// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BandRule {
-    /// One band at ξ₁ = 0 (Velinov Eq. 27).
-    Single,
-    /// 3-point Gauss–Hermite (nodes 0, ±√3).
-    Hermite3,
-    /// 5-point Gauss–Hermite.
-    Hermite5,
-    /// Bands placed over the light's own ξ₁ range ([`LightRegion::dot_range`]), panel by
-    /// panel between its kinks (`bands = 20` in [`LightParams`]).
-    Extent,
+gpu_enum! {
+    /// How the ξ₁ direction (across the band) is integrated.
+    ///
+    /// Velinov's Eq. 27 evaluates the light's chord on the single line ξ₁ = 0 and multiplies
+    /// by the whole Gaussian `∫ e^{−4π²σ²ξ₁²} dξ₁`. That is exact only when the chord does not
+    /// change across the band; where a light edge cuts the band at an angle, or the light is
+    /// not much wider than the band (`α ≲ 10 λ/(2πσ)`), the chord's curvature in ξ₁ makes it
+    /// over- or under-estimate. The Gauss–Hermite rules evaluate the chord on 3 or 5 parallel
+    /// lines `ξ₁ = x_k s` (`s = 1/(2√2 πσ)`, the Gaussian's standard deviation) and weight
+    /// them, which is exact for chords polynomial in ξ₁ up to degree 5 or 9. Chords are not
+    /// polynomial where the band family leaves the light: the chord opens like a square root
+    /// from the tangent band (and jumps where the band circle is small), which no Gauss–Hermite
+    /// rule resolves (9 and 15 points were tried: 95.5 % and 97 % of the sweep within 1 %).
+    /// [`BandRule::Extent`] instead finds the range of ξ₁ the light covers, cuts it at the
+    /// chord's kinks (polygon corners, the horizon meeting the light) and integrates the
+    /// Gaussian-weighted chord over each panel with an 8-point Gauss–Legendre rule in
+    /// `1 − cos t`, which absorbs square roots and kinks at the panel ends; a light covering
+    /// the whole window without a kink gets the 5-point Gauss–Hermite rule.
+    pub enum BandRule {
+        /// One band at ξ₁ = 0 (Velinov Eq. 27).
+        Single = 1,
+        /// 3-point Gauss–Hermite (nodes 0, ±√3).
+        Hermite3 = 3,
+        /// 5-point Gauss–Hermite.
+        Hermite5 = 5,
+        /// Bands placed over the light's own ξ₁ range ([`LightRegion::dot_range`]), panel by
+        /// panel between its kinks (`bands = 20` in [`LightParams`]).
+        Extent = 20,
+    }
+    fallback = Single;
 }
 
 impl BandRule {
-    /// Decodes [`LightParams::bands`].
-    #[inline]
-    pub fn from_u32(v: u32) -> BandRule {
-        match v {
-            3 => BandRule::Hermite3,
-            5 => BandRule::Hermite5,
-            20 => BandRule::Extent,
-            _ => BandRule::Single,
-        }
-    }
-
     /// Number of fixed bands (0 for [`BandRule::Extent`], which places its own).
     #[inline]
     pub fn count(self) -> usize {
@@ -332,7 +329,7 @@ pub struct Across {
     /// Depth D (µm).
     pub depth: f32,
     /// Depth phase in half-turns per µm of depth, `2γ/λ` (1/µm; see
-    /// [`crate::table::depth_half_turns_per_um`]).
+    /// [`crate::units::depth_half_turns_per_um`]).
     pub depth_half_turns_per_um: f32,
     /// λ (µm).
     pub lambda: f32,
@@ -562,7 +559,7 @@ pub fn scratch_band_power(
 pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: &S) -> f32 {
     let wo = Vec3::from_array(q.wo).normalize_or_zero();
     let sigma = params.sigma_um;
-    let lambda = crate::table::um_from_nm(q.lambda_nm);
+    let lambda = crate::units::um_from_nm(q.lambda_nm);
     if !(wo.z > 0.0 && sigma > 0.0 && lambda > 0.0 && sigma.is_finite() && lambda.is_finite()) {
         return 0.0;
     }
@@ -571,7 +568,7 @@ pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: 
     };
     let wc = region.center();
     let gamma = DepthTerm::from_u32(params.depth_term).gamma(wc.z + wo.z);
-    let half_turns = crate::table::depth_half_turns_per_um(gamma, q.lambda_nm);
+    let half_turns = crate::units::depth_half_turns_per_um(gamma, q.lambda_nm);
     let eta = EtaMode::from_u32(params.eta);
     let si = SiMode::from_u32(params.si_mode);
     let rule = BandRule::from_u32(params.bands);

@@ -10,20 +10,22 @@
 //! | `sphere` | sphere cone (`asin` true, `atan` Eq. 31), its crossings (Eqs. 30–35) |
 //! | `polygon` | spherical polygons, their crossings (Eqs. 36–41) |
 //! | `integrate` | `Pod` records and [`light_integral`] |
+//! | `limits` | capacities of the fixed-size lists |
 
 pub mod band;
 pub mod band_circle;
 pub mod horizon;
 pub mod integrate;
+pub mod limits;
 pub mod polygon;
 pub mod si_fast;
 pub mod sphere;
 
 pub use band::{SiMode, band_antiderivative, band_integral};
 pub use integrate::{
-    BandRule, LIGHT_POLYGON, LIGHT_SPHERE, Light, LightParams, LightQuery, LightRegion,
-    light_integral,
+    BandRule, Light, LightKind, LightParams, LightQuery, LightRegion, light_integral,
 };
-pub use polygon::{MAX_VERTICES, SphericalPolygon};
+pub use limits::{MAX_BREAKPOINTS, MAX_VERTICES};
+pub use polygon::SphericalPolygon;
 pub use si_fast::si_fast;
 pub use sphere::{Cone, SphereCap};

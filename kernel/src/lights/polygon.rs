@@ -12,11 +12,9 @@
 //! point, the polygon's plane through the point) contain nothing. Emitters are two-sided.
 
 use super::band_circle::{BandCircle, Breakpoints};
+use super::limits::MAX_VERTICES;
 use crate::math;
 use glam::Vec3;
-
-/// Capacity of a polygon light (larger polygons are split into fans by the std side).
-pub const MAX_VERTICES: usize = 16;
 
 /// Below this `|det(ĉ, U_m, U_{m+1})|` a fan triangle counts as degenerate.
 const MIN_DET: f32 = 1.0e-12;

@@ -18,23 +18,15 @@ use super::band_circle::{BandCircle, Breakpoints};
 use crate::math;
 use glam::Vec3;
 
-/// Which cone a sphere subtends.
-// `repr(u32)`: a default `u8` tag needs the Int8 capability on SPIR-V.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Cone {
-    /// The true sphere: `α = asin(r/d)` (`α = π`, every direction, when `d ≤ r`).
-    Asin = 0,
-    /// Velinov's Eq. 31 (a disk facing the point): `α = atan(r/d)`.
-    Atan = 1,
-}
-
-impl Cone {
-    /// Decodes a `u32` (unknown → `Asin`).
-    #[inline]
-    pub fn from_u32(v: u32) -> Cone {
-        if v == 1 { Cone::Atan } else { Cone::Asin }
+gpu_enum! {
+    /// Which cone a sphere subtends.
+    pub enum Cone {
+        /// The true sphere: `α = asin(r/d)` (`α = π`, every direction, when `d ≤ r`).
+        Asin = 0,
+        /// Velinov's Eq. 31 (a disk facing the point): `α = atan(r/d)`.
+        Atan = 1,
     }
+    fallback = Asin;
 }
 
 /// The cone of directions a spherical light fills.

@@ -3,7 +3,7 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `segment` | the `Pod` scratch record and its frame (tangent, bitangent, centre) |
+//! | `record` | the `Pod` scratch record and its frame (tangent, bitangent, centre) |
 //! | `profile` | mask and groove-profile Fourier transforms (Werner Eqs. 14, 26–31) |
 //! | `spatial_phase` | η, finite (App. A) and infinite (Velinov Eq. 8) |
 //! | `set` | "every scratch near x0": brute force or the flattened BVH |
@@ -12,16 +12,16 @@
 
 pub mod coherent_sum;
 pub mod profile;
+pub mod record;
 pub mod response;
-pub mod segment;
 pub mod set;
 pub mod spatial_phase;
 
 pub use coherent_sum::CoherentSum;
 pub use profile::{DepthTerm, Profile};
+pub use record::{Scratch, SegmentFrame};
 pub use response::{
     ResponseInputs, ScratchTerms, base_response, scratch_area_density, scratch_response,
 };
-pub use segment::{Scratch, SegmentFrame};
 pub use set::{NearCursor, ScratchBvh, ScratchSet, ScratchSlice};
 pub use spatial_phase::{EtaMode, eta_finite, eta_infinite};

@@ -18,50 +18,29 @@
 
 use crate::math::{self, C32};
 
-/// Groove cross-section.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u32)]
-pub enum Profile {
-    /// Flat-bottomed groove of constant depth.
-    Rect = 0,
-    /// V-shaped groove, deepest on the centre line.
-    Triangle = 1,
-}
-
-impl Profile {
-    /// Decodes the `u32` stored in [`super::Scratch::profile`]; unknown values read as
-    /// `Rect` (the std side validates before upload).
-    #[inline]
-    pub fn from_u32(v: u32) -> Profile {
-        if v == 1 {
-            Profile::Triangle
-        } else {
-            Profile::Rect
-        }
+gpu_enum! {
+    /// Groove cross-section.
+    pub enum Profile {
+        /// Flat-bottomed groove of constant depth.
+        Rect = 0,
+        /// V-shaped groove, deepest on the centre line.
+        Triangle = 1,
     }
+    fallback = Rect;
 }
 
-/// How the depth phase depends on the directions.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u32)]
-pub enum DepthTerm {
-    /// `γ = γi + γo` replaced by 2 (normal incidence; Velinov 2018 Eq. 4, Eq. 11).
-    SmallAngle = 0,
-    /// The exact `γ = γi + γo` (Werner Eq. 20 with the corrected sign).
-    Exact = 1,
+gpu_enum! {
+    /// How the depth phase depends on the directions.
+    pub enum DepthTerm {
+        /// `γ = γi + γo` replaced by 2 (normal incidence; Velinov 2018 Eq. 4, Eq. 11).
+        SmallAngle = 0,
+        /// The exact `γ = γi + γo` (Werner Eq. 20 with the corrected sign).
+        Exact = 1,
+    }
+    fallback = SmallAngle;
 }
 
 impl DepthTerm {
-    /// Decodes a `u32` (unknown → `SmallAngle`).
-    #[inline]
-    pub fn from_u32(v: u32) -> DepthTerm {
-        if v == 1 {
-            DepthTerm::Exact
-        } else {
-            DepthTerm::SmallAngle
-        }
-    }
-
     /// The `γ` to use in the depth phase given the true `γi + γo`.
     #[inline]
     pub fn gamma(self, gamma: f32) -> f32 {

@@ -42,7 +42,7 @@ pub struct ResponseInputs {
     /// `(wi + wo)_xy / λ` (1/µm).
     pub xi: Vec2,
     /// The depth phase in half-turns per µm of groove depth, `2γ/λ` (1/µm), with the
-    /// effective `γ` of [`super::DepthTerm::gamma`] (see `table::depth_half_turns_per_um`).
+    /// effective `γ` of [`super::DepthTerm::gamma`] (see `units::depth_half_turns_per_um`).
     pub depth_half_turns_per_um: f32,
     /// Coherence σ (µm).
     pub sigma: f32,

@@ -4,7 +4,7 @@
 //! BVH in `crate::bvh` for large sets) and the models stay generic over them, so the CPU and
 //! GPU run the same model code whatever the lookup.
 
-use super::segment::Scratch;
+use super::record::Scratch;
 use crate::bvh::{BvhCursor, BvhNode, next_near_point};
 use glam::Vec2;
 

@@ -7,30 +7,19 @@
 //! whose last factor is [`crate::math::gauss_fourier_interval`] (overflow-free form of
 //! App. A's `c0 [erf(·) − erf(·)]`).
 
-use super::segment::SegmentFrame;
+use super::record::SegmentFrame;
 use crate::math::{self, C32};
 use glam::Vec2;
 
-/// Which spatial phase to use.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[repr(u32)]
-pub enum EtaMode {
-    /// Finite segment (Werner App. A; Velinov Eq. 5).
-    Finite = 0,
-    /// Infinitely long scratch through the segment (Velinov Eq. 8).
-    Infinite = 1,
-}
-
-impl EtaMode {
-    /// Decodes a `u32` (unknown → `Finite`).
-    #[inline]
-    pub fn from_u32(v: u32) -> EtaMode {
-        if v == 1 {
-            EtaMode::Infinite
-        } else {
-            EtaMode::Finite
-        }
+gpu_enum! {
+    /// Which spatial phase to use.
+    pub enum EtaMode {
+        /// Finite segment (Werner App. A; Velinov Eq. 5).
+        Finite = 0,
+        /// Infinitely long scratch through the segment (Velinov Eq. 8).
+        Infinite = 1,
     }
+    fallback = Finite;
 }
 
 /// `(ξ₁, ξ₂) = (ξ·t, ξ·b)`: ξ in the segment's frame (Werner Eq. 13).

@@ -2,7 +2,7 @@
 //! kernel primitive tests and hit order as the portable BVH, so the two must agree exactly.
 
 use scratchwave_kernel::ray::{Hit, Ray, Triangle, intersect_triangle, is_closer};
-use scratchwave_kernel::segment::Segment2;
+use scratchwave_kernel::segment2d::Segment2;
 
 /// The closest hit over all `triangles` (primitive id = index, geometry id 0).
 pub fn closest_hit(triangles: &[Triangle], ray: &Ray) -> Option<Hit> {

@@ -6,7 +6,7 @@ use crate::mesh::{MeshError, check_count};
 use crate::queries::SegmentRadiusQuery;
 use core::ops::ControlFlow;
 use scratchwave_kernel::bvh::BvhNode;
-use scratchwave_kernel::segment::{Segment2, for_each_segment_within};
+use scratchwave_kernel::segment2d::{Segment2, for_each_segment_within};
 
 /// Segments with their flattened hierarchy; implements [`SegmentRadiusQuery`] with the
 /// kernel's traversal.

@@ -2,60 +2,11 @@
 //! suite. Everything is seeded; the same call gives the same data on every machine.
 
 use scratchwave_kernel::ray::Ray;
-use scratchwave_kernel::segment::Segment2;
+use scratchwave_kernel::segment2d::Segment2;
 
-/// SplitMix64 (Steele et al. 2014): tiny, fast, and good enough for test data.
-#[derive(Clone, Debug)]
-pub struct SplitMix64(u64);
-
-impl SplitMix64 {
-    /// A generator started from `seed`.
-    pub fn new(seed: u64) -> SplitMix64 {
-        SplitMix64(seed)
-    }
-
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`, 24 random bits.
-    pub fn next_f32(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 * (1.0 / (1u64 << 24) as f32)
-    }
-
-    /// Uniform in `[lo, hi)`.
-    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.next_f32()
-    }
-
-    /// Uniform in `[0, 1)`, 53 random bits.
-    pub fn next_f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    /// Uniform in `[lo, hi)`, in f64.
-    pub fn range_f64(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next_f64()
-    }
-
-    /// Log-uniform in `[lo, hi)` (`lo > 0`), in f64.
-    pub fn log_range_f64(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + (hi.ln() - lo.ln()) * self.next_f64()).exp()
-    }
-
-    /// Uniform on the unit sphere.
-    pub fn direction(&mut self) -> [f32; 3] {
-        let z = self.range(-1.0, 1.0);
-        let phi = self.range(0.0, core::f32::consts::TAU);
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        [r * phi.cos(), r * phi.sin(), z]
-    }
-}
+use scratchwave_host::generate::{HalfLength, ProfileMix, ScratchRecipe, Uniform};
+pub use scratchwave_host::rng::SplitMix64;
+use scratchwave_kernel::scratch::{Profile, Scratch};
 
 /// An indexed triangle mesh.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -182,18 +133,25 @@ pub fn camera_rays(width: usize, height: usize, half_extent: f32) -> Vec<Ray> {
     rays
 }
 
-/// `n` segments in the square `[0, extent)²`, uniform start points, uniform directions,
-/// lengths uniform in `[0, max_len)`.
+/// `n` segments with centres uniform in the square `[0, extent)²`, uniform directions and
+/// lengths uniform in `[0, max_len)`: the straight scratches of [`ScratchRecipe`] (seeded
+/// by `seed`), as bare segments.
 pub fn random_segments(n: usize, seed: u64, extent: f32, max_len: f32) -> Vec<Segment2> {
-    let mut rng = SplitMix64::new(seed);
-    (0..n)
-        .map(|_| {
-            let a = [rng.range(0.0, extent), rng.range(0.0, extent)];
-            let phi = rng.range(0.0, core::f32::consts::TAU);
-            let len = rng.range(0.0, max_len);
-            Segment2::new(a, [a[0] + len * phi.cos(), a[1] + len * phi.sin()])
-        })
-        .collect()
+    ScratchRecipe {
+        count: n,
+        unit: 1.0,
+        center: [0.5 * extent, 0.5 * extent],
+        side: extent,
+        outliers: None,
+        half_length: HalfLength::Uniform(Uniform::new(0.0, 0.5 * max_len)),
+        width: Uniform::new(1.0, 0.0),
+        depth: Uniform::new(0.1, 0.0),
+        profile: ProfileMix::Only(Profile::Rect),
+    }
+    .generate(&mut SplitMix64::new(seed))
+    .iter()
+    .map(Scratch::segment)
+    .collect()
 }
 
 /// `n` points uniform in `[0, extent)²`.

@@ -1,15 +1,16 @@
 //! The portable BVH against brute force: identical hits (same kernel tests, same hit order),
 //! identical occlusion, and exactly the brute-force set for radius queries.
 
-use scratchwave_cpu::fixtures::{
-    self, Mesh, camera_rays, random_points, random_rays, sphere_with, triangle_soup,
-};
-use scratchwave_cpu::mesh::triangles_of;
-use scratchwave_cpu::{
-    Coherence, MeshError, RayQueries, SegmentBvh, SegmentRadiusQuery, TriangleBvh, reference,
+use scratchwave_host::mesh::triangles_of;
+use scratchwave_host::{
+    Coherence, MeshError, RayQueries, SegmentBvh, SegmentRadiusQuery, TriangleBvh,
 };
 use scratchwave_kernel::ray::Ray;
-use scratchwave_kernel::segment::Segment2;
+use scratchwave_kernel::segment2d::Segment2;
+use scratchwave_testkit::fixtures::{
+    self, Mesh, camera_rays, random_points, random_rays, sphere_with, triangle_soup,
+};
+use scratchwave_testkit::reference;
 
 /// Checks closest hits and occlusion of `rays` against brute force. Occlusion needs no
 /// second scan: with the closest hit at `t`, a shadow ray ending just before `t` is

@@ -1,6 +1,6 @@
 //! The scratch record shared by CPU and GPU, and its local frame (Werner §3.1, Eq. 13).
 
-use crate::segment::Segment2;
+use crate::segment2d::Segment2;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
 

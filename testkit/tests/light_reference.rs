@@ -1,5 +1,5 @@
 //! The closed-form light integrals against the adaptive quadrature reference
-//! (`scratchwave_cpu::light_reference`), over seeded random sweeps of sphere and polygon
+//! (`scratchwave_testkit::light_reference`), over seeded random sweeps of sphere and polygon
 //! lights (sizes, distances, elevations down to partly below the horizon, scratch
 //! orientations, wavelengths, widths); and the reference against itself and Monte Carlo.
 //!
@@ -11,10 +11,10 @@
 //! 3 %. The full distribution (and where Eq. 27 fails) is in
 //! `docs/lights.md`, produced by `cargo run -p scratchwave-benches --release --bin light_chart`.
 
-use scratchwave_cpu::light_configs::{LightCase, Rng, SweepRanges, random_case};
-use scratchwave_cpu::light_mc::light_mc;
-use scratchwave_cpu::light_reference::{light_reference, light_reference_budget};
 use scratchwave_kernel::lights::{Cone, Light, LightQuery, SiMode};
+use scratchwave_testkit::light_configs::{LightCase, Rng, SweepRanges, random_case};
+use scratchwave_testkit::light_mc::light_mc;
+use scratchwave_testkit::light_reference::{light_reference, light_reference_budget};
 
 fn closed(c: &LightCase, bands: u32, si: SiMode) -> f64 {
     f64::from(c.closed_form(si, bands))

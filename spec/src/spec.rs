@@ -3,44 +3,21 @@
 
 use crate::error::SpecError;
 use crate::json::{self, Obj};
+use scratchwave_host::{FootprintBatch, TableBatch};
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::ghs::layers::LayerForm;
 use scratchwave_kernel::ghs::{self, DiffColor, GhsParams, Layer};
+use scratchwave_kernel::material::{FresnelAngle, Material};
 use scratchwave_kernel::scratch::{Profile, Scratch};
-use scratchwave_kernel::table::{
-    FresnelAngle, Material, Model, TableParams, TableQuery, UNIT_TOLERANCE,
-};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery};
+use scratchwave_kernel::units::UNIT_TOLERANCE;
 use serde_json::Value;
 
 /// Default coherence σ (µm): δc = 6σ = 60 µm (Werner §4.1).
 pub const DEFAULT_SIGMA_UM: f32 = 10.0;
 
-/// A parsed `scratchwave table` spec.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TableSpec {
-    /// Model and options.
-    pub params: TableParams,
-    /// Scratches (µm).
-    pub scratches: Vec<Scratch>,
-    /// Queries in input order.
-    pub queries: Vec<TableQuery>,
-    /// The spec-level material (queries without their own use it).
-    pub default_material: Material,
-    /// Model `ghs`: its material (the other models leave this `None`).
-    pub ghs: Option<GhsParams>,
-}
-
-/// A parsed `scratchwave footprint` spec.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FootprintSpec {
-    /// Coherence σ (µm).
-    pub sigma_um: f32,
-    /// `(scratch, ellipse)` per query.
-    pub queries: Vec<(Scratch, Ellipse)>,
-}
-
 /// Reads a table spec from a JSON value.
-pub fn table_spec(v: &Value) -> Result<TableSpec, SpecError> {
+pub fn table_spec(v: &Value) -> Result<TableBatch, SpecError> {
     let top = Obj::new(
         v,
         "",
@@ -93,7 +70,7 @@ pub fn table_spec(v: &Value) -> Result<TableSpec, SpecError> {
             u32::from(o.opt_choice("base", &["none", "gaussian"])? == Some("gaussian"));
     }
     let queries = queries(&top, true, Some(material))?;
-    Ok(TableSpec {
+    Ok(TableBatch {
         params,
         scratches,
         queries,
@@ -145,7 +122,7 @@ fn queries(
 
 /// Model `ghs` (Holzschuch & Pacanowski): the material carries the surface statistics; there
 /// are no scratches, σ or options.
-fn ghs_table_spec(top: &Obj) -> Result<TableSpec, SpecError> {
+fn ghs_table_spec(top: &Obj) -> Result<TableBatch, SpecError> {
     for key in ["sigma_um", "options"] {
         if top.get(key).is_some() {
             return Err(SpecError::field(
@@ -164,7 +141,7 @@ fn ghs_table_spec(top: &Obj) -> Result<TableSpec, SpecError> {
     }
     let ghs = ghs_material(top.req("material")?, &top.path_of("material"))?;
     let queries = queries(top, false, None)?;
-    Ok(TableSpec {
+    Ok(TableBatch {
         params: TableParams {
             model: GHS_MODEL_ID,
             ..TableParams::default()
@@ -177,7 +154,7 @@ fn ghs_table_spec(top: &Obj) -> Result<TableSpec, SpecError> {
 }
 
 /// `TableParams::model` value recorded for GHS tables (the evaluation goes through
-/// [`TableSpec::ghs`]; the id only keeps reports unambiguous).
+/// [`TableBatch::ghs`]; the id only keeps reports unambiguous).
 pub const GHS_MODEL_ID: u32 = 3;
 
 /// A GHS material: `{"sigma_s_um", "beta", "p", "b_um", "c", "ior": [n, k], "diff_color"?,
@@ -265,7 +242,7 @@ fn ghs_material(v: &Value, path: &str) -> Result<GhsParams, SpecError> {
 }
 
 /// Reads a footprint spec from a JSON value.
-pub fn footprint_spec(v: &Value) -> Result<FootprintSpec, SpecError> {
+pub fn footprint_spec(v: &Value) -> Result<FootprintBatch, SpecError> {
     let top = Obj::new(v, "", &["sigma_um", "scratches", "queries"])?;
     let sigma_um = sigma(&top)?;
     let scratches = scratches(&top)?;
@@ -299,7 +276,7 @@ pub fn footprint_spec(v: &Value) -> Result<FootprintSpec, SpecError> {
         };
         queries.push((scratch, ellipse));
     }
-    Ok(FootprintSpec { sigma_um, queries })
+    Ok(FootprintBatch { sigma_um, queries })
 }
 
 fn sigma(top: &Obj) -> Result<f32, SpecError> {

@@ -15,7 +15,7 @@
 //! outer over `u2` across the light's bounding box (sampled, padded), split at the first sinc
 //! zeros.
 
-use scratchwave_kernel::lights::{Cone, LIGHT_POLYGON, LightParams, LightQuery};
+use scratchwave_kernel::lights::{Cone, LightKind, LightParams, LightQuery};
 use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 use std::collections::BinaryHeap;
@@ -31,7 +31,8 @@ pub struct Reference {
     pub evals: u64,
 }
 
-use crate::vec64::{V3, basis, cross, dot, norm};
+use crate::dvec::{basis, unit};
+use glam::DVec3;
 
 /// The light's solid angle in `f64`, with an inside test only.
 #[derive(Clone, Debug)]
@@ -39,16 +40,16 @@ pub enum RefRegion {
     /// Cone around `axis` of half-angle `alpha` (π: everything).
     Cone {
         /// Unit axis.
-        axis: V3,
+        axis: DVec3,
         /// Half-angle.
         alpha: f64,
     },
     /// Fan of spherical triangles `(c, u_m, u_{m+1})`.
     Fan {
         /// Unit vertex directions.
-        u: Vec<V3>,
+        u: Vec<DVec3>,
         /// Normalised mean direction.
-        c: V3,
+        c: DVec3,
     },
     /// Nothing (degenerate).
     Empty,
@@ -58,23 +59,21 @@ impl RefRegion {
     /// From a kernel light record (same interpretation as the kernel, rebuilt in `f64`).
     pub fn new(q: &LightQuery) -> RefRegion {
         let l = &q.light;
-        if l.kind == LIGHT_POLYGON {
+        if LightKind::from_u32(l.kind) == LightKind::Polygon {
             let n = (l.count as usize).min(l.vertices.len());
             if n < 3 {
                 return RefRegion::Empty;
             }
-            let u: Vec<V3> = l.vertices[..n]
+            let u: Vec<DVec3> = l.vertices[..n]
                 .iter()
-                .map(|v| norm([v[0] as f64, v[1] as f64, v[2] as f64]))
+                .map(|v| unit(DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)))
                 .collect();
-            let s = u
-                .iter()
-                .fold([0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
-            RefRegion::Fan { c: norm(s), u }
+            let s = u.iter().fold(DVec3::ZERO, |a, b| a + *b);
+            RefRegion::Fan { c: unit(s), u }
         } else {
-            let c = [l.sphere[0] as f64, l.sphere[1] as f64, l.sphere[2] as f64];
+            let c = DVec3::new(l.sphere[0] as f64, l.sphere[1] as f64, l.sphere[2] as f64);
             let r = l.sphere[3] as f64;
-            let d = dot(c, c).sqrt();
+            let d = c.dot(c).sqrt();
             if !(r > 0.0) || (d == 0.0 && Cone::from_u32(l.cone) == Cone::Atan) {
                 return RefRegion::Empty;
             }
@@ -84,35 +83,35 @@ impl RefRegion {
                 Cone::Atan => r.atan2(d),
             };
             RefRegion::Cone {
-                axis: norm(c),
+                axis: unit(c),
                 alpha,
             }
         }
     }
 
     /// Whether the unit direction `w` is inside.
-    pub fn contains(&self, w: V3) -> bool {
+    pub fn contains(&self, w: DVec3) -> bool {
         match self {
             RefRegion::Cone { axis, alpha } => {
-                *alpha >= std::f64::consts::PI || dot(w, *axis).clamp(-1.0, 1.0).acos() <= *alpha
+                *alpha >= std::f64::consts::PI || w.dot(*axis).clamp(-1.0, 1.0).acos() <= *alpha
             }
             RefRegion::Fan { u, c } => (0..u.len()).any(|m| {
                 let (a, b) = (u[m], u[(m + 1) % u.len()]);
-                let det = dot(cross(a, b), *c);
+                let det = a.cross(b).dot(*c);
                 if det.abs() < 1e-15 {
                     return false;
                 }
                 let o = det.signum();
-                o * dot(cross(*c, a), w) >= 0.0
-                    && o * dot(cross(a, b), w) >= 0.0
-                    && o * dot(cross(b, *c), w) >= 0.0
+                o * c.cross(a).dot(w) >= 0.0
+                    && o * a.cross(b).dot(w) >= 0.0
+                    && o * b.cross(*c).dot(w) >= 0.0
             }),
             RefRegion::Empty => false,
         }
     }
 
     /// Sample directions covering the region (for bounding boxes).
-    pub fn samples(&self) -> Vec<V3> {
+    pub fn samples(&self) -> Vec<DVec3> {
         let mut out = Vec::new();
         match self {
             RefRegion::Cone { axis, alpha } => {
@@ -124,11 +123,7 @@ impl RefRegion {
                         let ph = std::f64::consts::TAU * j as f64 / 128.0;
                         let (st, ct) = th.sin_cos();
                         let (sp, cp) = ph.sin_cos();
-                        out.push(norm([
-                            ct * a[0] + st * (cp * e1[0] + sp * e2[0]),
-                            ct * a[1] + st * (cp * e1[1] + sp * e2[1]),
-                            ct * a[2] + st * (cp * e1[2] + sp * e2[2]),
-                        ]));
+                        out.push(unit(ct * a + st * (cp * e1 + sp * e2)));
                     }
                 }
             }
@@ -140,11 +135,7 @@ impl RefRegion {
                         for j in 0..=(k - i) {
                             let (x, y) = (i as f64 / k as f64, j as f64 / k as f64);
                             let z = 1.0 - x - y;
-                            out.push(norm([
-                                x * a[0] + y * b[0] + z * c[0],
-                                x * a[1] + y * b[1] + z * c[1],
-                                x * a[2] + y * b[2] + z * c[2],
-                            ]));
+                            out.push(unit(x * a + y * b + z * *c));
                         }
                     }
                 }
@@ -291,7 +282,7 @@ pub fn scratch_brdf<'a>(
     params: &LightParams,
     q: &'a LightQuery,
     scratch: &'a Scratch,
-) -> impl Fn(V3) -> f64 + 'a {
+) -> impl Fn(DVec3) -> f64 + 'a {
     let tp = TableParams {
         model: Model::Velinov as u32,
         eta: params.eta,
@@ -299,7 +290,7 @@ pub fn scratch_brdf<'a>(
         sigma_um: params.sigma_um,
         ..TableParams::default()
     };
-    move |wi: V3| {
+    move |wi: DVec3| {
         let tq = TableQuery {
             wi: [wi[0] as f32, wi[1] as f32, wi[2] as f32],
             lambda_nm: q.lambda_nm,
@@ -326,8 +317,8 @@ pub fn light_reference_budget(
 ) -> Reference {
     let region = RefRegion::new(q);
     let wo = {
-        let w = [q.wo[0] as f64, q.wo[1] as f64, q.wo[2] as f64];
-        norm(w)
+        let w = DVec3::new(q.wo[0] as f64, q.wo[1] as f64, q.wo[2] as f64);
+        unit(w)
     };
     let (dx, dy) = (scratch.tangent[0] as f64, scratch.tangent[1] as f64);
     let tl = (dx * dx + dy * dy).sqrt();
@@ -339,13 +330,13 @@ pub fn light_reference_budget(
     let b = [-t[1], t[0]];
     let brdf = scratch_brdf(params, q, scratch);
     let evals = std::cell::Cell::new(0u64);
-    let wi_of = |u1: f64, u2: f64| -> Option<V3> {
+    let wi_of = |u1: f64, u2: f64| -> Option<DVec3> {
         let x = u1 * t[0] + u2 * b[0] - wo[0];
         let y = u1 * t[1] + u2 * b[1] - wo[1];
         let r2 = x * x + y * y;
-        (r2 < 1.0).then(|| [x, y, (1.0 - r2).sqrt()])
+        (r2 < 1.0).then(|| DVec3::new(x, y, (1.0 - r2).sqrt()))
     };
-    let fr = |wi: V3| -> f64 {
+    let fr = |wi: DVec3| -> f64 {
         evals.set(evals.get() + 1);
         brdf(wi)
     };
@@ -397,7 +388,7 @@ pub fn light_reference_budget(
     let b2 = breaks(lo2, hi2, &outer_pts);
     // Scale: the peak BRDF times the band's area in u.
     let peak = {
-        let m = [-wo[0], -wo[1], wo[2]];
+        let m = DVec3::new(-wo[0], -wo[1], wo[2]);
         fr(m) * sd * 2.5 * (lambda / w).min(hi2 - lo2)
     };
     // Inner range: the band's ±8 standard deviations (|η|² < e^{−32} of its peak beyond,

@@ -5,12 +5,13 @@
 //! uniform on the planar polygon (fan about the vertex mean, triangles chosen by area;
 //! pdf in solid angle `d²/(A |cos θ_l|)`, so each sample weighs `f_r cos θi A |cos θ_l| / d²`). Samples below the horizon contribute 0.
 
-use crate::light_configs::Rng;
-use scratchwave_kernel::lights::{Cone, LIGHT_POLYGON, LightParams, LightQuery};
+use scratchwave_host::rng::SplitMix64 as Rng;
+use scratchwave_kernel::lights::{Cone, LightKind, LightParams, LightQuery};
 use scratchwave_kernel::scratch::Scratch;
 
+use crate::dvec::{basis, unit};
 use crate::light_reference::scratch_brdf;
-use crate::vec64::{V3, basis, cross, dot, norm, sub};
+use glam::DVec3;
 
 /// `N`-sample light-sampling estimate (0 for degenerate lights).
 pub fn light_mc(
@@ -21,7 +22,7 @@ pub fn light_mc(
     rng: &mut Rng,
 ) -> f64 {
     let brdf = scratch_brdf(params, q, scratch);
-    let f = |wi: V3| -> f64 {
+    let f = |wi: DVec3| -> f64 {
         if wi[2] <= 0.0 {
             return 0.0;
         }
@@ -29,27 +30,21 @@ pub fn light_mc(
     };
     let l = &q.light;
     let mut sum = 0.0;
-    if l.kind == LIGHT_POLYGON {
+    if LightKind::from_u32(l.kind) == LightKind::Polygon {
         let k = (l.count as usize).min(l.vertices.len());
         if k < 3 {
             return 0.0;
         }
-        let v: Vec<V3> = l.vertices[..k]
+        let v: Vec<DVec3> = l.vertices[..k]
             .iter()
-            .map(|p| [p[0] as f64, p[1] as f64, p[2] as f64])
+            .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))
             .collect();
-        let c = v.iter().fold([0.0; 3], |a, p| {
-            [
-                a[0] + p[0] / k as f64,
-                a[1] + p[1] / k as f64,
-                a[2] + p[2] / k as f64,
-            ]
-        });
-        let tris: Vec<(V3, V3, f64)> = (0..k)
+        let c = v.iter().fold(DVec3::ZERO, |a, p| a + *p / k as f64);
+        let tris: Vec<(DVec3, DVec3, f64)> = (0..k)
             .map(|m| {
                 let (a, b) = (v[m], v[(m + 1) % k]);
-                let n = cross(sub(a, c), sub(b, c));
-                (a, b, 0.5 * dot(n, n).sqrt())
+                let n = (a - c).cross(b - c);
+                (a, b, 0.5 * n.dot(n).sqrt())
             })
             .collect();
         let area: f64 = tris.iter().map(|t| t.2).sum();
@@ -74,24 +69,20 @@ pub fn light_mc(
             if x + y > 1.0 {
                 (x, y) = (1.0 - x, 1.0 - y);
             }
-            let p = [
-                c[0] + x * (a[0] - c[0]) + y * (b[0] - c[0]),
-                c[1] + x * (a[1] - c[1]) + y * (b[1] - c[1]),
-                c[2] + x * (a[2] - c[2]) + y * (b[2] - c[2]),
-            ];
-            let d2 = dot(p, p);
-            let wi = norm(p);
-            let nrm = norm(cross(sub(a, c), sub(b, c)));
-            let cos_l = dot(nrm, wi).abs();
+            let p = c + x * (a - c) + y * (b - c);
+            let d2 = p.dot(p);
+            let wi = unit(p);
+            let nrm = unit((a - c).cross(b - c));
+            let cos_l = nrm.dot(wi).abs();
             if d2 > 0.0 {
                 sum += f(wi) * cos_l / d2;
             }
         }
         sum * area / n as f64
     } else {
-        let cen = [l.sphere[0] as f64, l.sphere[1] as f64, l.sphere[2] as f64];
+        let cen = DVec3::new(l.sphere[0] as f64, l.sphere[1] as f64, l.sphere[2] as f64);
         let r = l.sphere[3] as f64;
-        let d = dot(cen, cen).sqrt();
+        let d = cen.dot(cen).sqrt();
         if !(r > 0.0 && d > 0.0) {
             return 0.0;
         }
@@ -100,7 +91,7 @@ pub fn light_mc(
             Cone::Asin => (r / d).asin(),
             Cone::Atan => r.atan2(d),
         };
-        let axis = norm(cen);
+        let axis = unit(cen);
         let (e1, e2) = basis(axis);
         let cos_a = alpha.cos();
         let solid = std::f64::consts::TAU * (1.0 - cos_a);
@@ -109,11 +100,7 @@ pub fn light_mc(
             let st = (1.0 - ct * ct).max(0.0).sqrt();
             let ph = std::f64::consts::TAU * rng.next_f64();
             let (sp, cp) = ph.sin_cos();
-            let wi = [
-                ct * axis[0] + st * (cp * e1[0] + sp * e2[0]),
-                ct * axis[1] + st * (cp * e1[1] + sp * e2[1]),
-                ct * axis[2] + st * (cp * e1[2] + sp * e2[2]),
-            ];
+            let wi = ct * axis + st * (cp * e1 + sp * e2);
             sum += f(wi);
         }
         sum * solid / n as f64

@@ -2,10 +2,11 @@
 //! and the models give the same values through it as through a plain slice.
 
 use glam::Vec2;
-use scratchwave_cpu::ScratchLookup;
-use scratchwave_cpu::fixtures::SplitMix64;
+use scratchwave_host::ScratchLookup;
 use scratchwave_kernel::scratch::{Scratch, ScratchSet, ScratchSlice};
+
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
+use scratchwave_testkit::fixtures::SplitMix64;
 
 /// `n` scratches over a square of side `extent` µm, lengths from 0 to 400 µm.
 fn field(n: usize, extent: f32, seed: u64) -> Vec<Scratch> {
@@ -95,7 +96,7 @@ fn models_agree_through_lookup_and_slice() {
                 wo: [a, b, (1.0 - a * a - b * b).sqrt()],
                 lambda_nm: 550.0,
                 x: [600.0 * r.next_f32(), 600.0 * r.next_f32()],
-                material: scratchwave_kernel::table::Material::constant(1.0),
+                material: scratchwave_kernel::material::Material::constant(1.0),
                 ..Default::default()
             };
             let (x, y) = (evaluate(&p, &q, &lookup.set()), evaluate(&p, &q, &brute));

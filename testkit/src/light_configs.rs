@@ -6,15 +6,16 @@
 //! `(wi_p + wo)_xy · t = 0`. Light sizes, distances, elevations (down to partly below the
 //! horizon) and scratch orientations are drawn from the ranges in [`SweepRanges`].
 
-use crate::vec64::{V3, basis_from, cross, norm};
+use crate::dvec::{basis_from, unit};
+use glam::DVec3;
 use scratchwave_kernel::lights::{
     Cone, Light, LightParams, LightQuery, MAX_VERTICES, SiMode, light_integral,
 };
+use scratchwave_kernel::material::Material;
 use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
-use scratchwave_kernel::table::Material;
 
 /// The sweeps' generator (seeded, so every sweep replays exactly).
-pub use crate::fixtures::SplitMix64 as Rng;
+pub use scratchwave_host::rng::SplitMix64 as Rng;
 
 /// What was drawn, for reports.
 #[derive(Clone, Copy, Debug, Default)]
@@ -80,13 +81,13 @@ impl Default for SweepRanges {
 }
 
 /// The sweep's basis about a light direction (`e1` from `dir × ẑ`, or `dir × x̂` near the
-/// pole). It differs from [`crate::vec64::basis`] only in the helper axis; it is kept so the
+/// pole). It differs from [`crate::dvec::basis`] only in the helper axis; it is kept so the
 /// seeded sweeps replay the configurations their published numbers came from.
-fn sweep_basis(dir: V3) -> (V3, V3) {
-    let helper = if dir[2].abs() < 0.9 {
-        [0.0, 0.0, 1.0]
+fn sweep_basis(dir: DVec3) -> (DVec3, DVec3) {
+    let helper = if dir.z.abs() < 0.9 {
+        DVec3::Z
     } else {
-        [1.0, 0.0, 0.0]
+        DVec3::X
     };
     basis_from(dir, helper)
 }
@@ -104,13 +105,13 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
     let alpha = rng.log_range_f64(ranges.alpha.0, ranges.alpha.1);
     let elevation = rng.range_f64(-ranges.below * alpha, 1.5);
     let azimuth = rng.range_f64(0.0, std::f64::consts::TAU);
-    let dir = [
+    let dir = DVec3::new(
         elevation.cos() * azimuth.cos(),
         elevation.cos() * azimuth.sin(),
         elevation.sin(),
-    ];
+    );
     let dist = rng.log_range_f64(1.0, 100.0);
-    let center = [dir[0] * dist, dir[1] * dist, dir[2] * dist];
+    let center = dir * dist;
     let is_poly = rng.next_f64() < ranges.polygon;
     let (light, vertices, wi_p) = if is_poly {
         // A radially jittered n-gon, tilted up to 50° away from facing the point.
@@ -119,23 +120,15 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
         let (e1, e2) = sweep_basis(dir);
         let tilt = rng.range_f64(0.0, 0.87);
         let (st, ct) = tilt.sin_cos();
-        let n_axis = [
-            ct * dir[0] + st * e1[0],
-            ct * dir[1] + st * e1[1],
-            ct * dir[2] + st * e1[2],
-        ];
-        let a1 = norm(cross(n_axis, e2));
+        let n_axis = ct * dir + st * e1;
+        let a1 = unit(n_axis.cross(e2));
         let rot = rng.range_f64(0.0, std::f64::consts::TAU);
         let mut vs = Vec::new();
         for k in 0..n {
             let ph = rot + std::f64::consts::TAU * k as f64 / n as f64;
             let rr = r * rng.range_f64(0.8, 1.2);
             let (s, c) = ph.sin_cos();
-            vs.push([
-                (center[0] + rr * (c * a1[0] + s * e2[0])) as f32,
-                (center[1] + rr * (c * a1[1] + s * e2[1])) as f32,
-                (center[2] + rr * (c * a1[2] + s * e2[2])) as f32,
-            ]);
+            vs.push((center + rr * (c * a1 + s * e2)).as_vec3().to_array());
         }
         // A point inside: random fan triangle, random barycentric.
         let k = (rng.next_f64() * n as f64) as usize % n;
@@ -143,15 +136,11 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
         if x + y > 1.0 {
             (x, y) = (1.0 - x, 1.0 - y);
         }
-        let a = vs[k].map(f64::from);
-        let b = vs[(k + 1) % n].map(f64::from);
-        let p = [
-            center[0] + x * (a[0] - center[0]) + y * (b[0] - center[0]),
-            center[1] + x * (a[1] - center[1]) + y * (b[1] - center[1]),
-            center[2] + x * (a[2] - center[2]) + y * (b[2] - center[2]),
-        ];
+        let a = DVec3::from_array(vs[k].map(f64::from));
+        let b = DVec3::from_array(vs[(k + 1) % n].map(f64::from));
+        let p = center + x * (a - center) + y * (b - center);
         debug_assert!(n <= MAX_VERTICES);
-        (Light::polygon(&vs), n, norm(p))
+        (Light::polygon(&vs), n, unit(p))
     } else {
         let cone = if rng.next_f64() < 0.5 {
             Cone::Asin
@@ -167,21 +156,17 @@ fn try_case(rng: &mut Rng, ranges: &SweepRanges, eta: u32) -> Option<LightCase> 
         let th = alpha * rng.next_f64().sqrt();
         let ph = rng.range_f64(0.0, std::f64::consts::TAU);
         let (st, ct) = th.sin_cos();
-        let p = [
-            ct * dir[0] + st * (ph.cos() * e1[0] + ph.sin() * e2[0]),
-            ct * dir[1] + st * (ph.cos() * e1[1] + ph.sin() * e2[1]),
-            ct * dir[2] + st * (ph.cos() * e1[2] + ph.sin() * e2[2]),
-        ];
-        let light = Light::sphere(center.map(|v| v as f32), r as f32, cone);
+        let p = ct * dir + st * (ph.cos() * e1 + ph.sin() * e2);
+        let light = Light::sphere(center.as_vec3().to_array(), r as f32, cone);
         (light, 0, p)
     };
-    if wi_p[2] < 0.02 {
+    if wi_p.z < 0.02 {
         return None;
     }
     let scratch_angle = rng.range_f64(0.0, std::f64::consts::PI);
     let t = [scratch_angle.cos(), scratch_angle.sin()];
     let b = [-t[1], t[0]];
-    let c = -(wi_p[0] * t[0] + wi_p[1] * t[1]);
+    let c = -(wi_p.x * t[0] + wi_p.y * t[1]);
     let room = 0.95 - c * c;
     if room <= 0.0 {
         return None;

@@ -3,7 +3,7 @@
 //! N of the GHS model, and N/10 area-light queries (the light sweep's configurations laid
 //! out by `light_configs::grid_batch`) with Eq. 27 and with the extent rule.
 //!
-//! `cargo run --release -p scratchwave-spirv --example throughput [-- N SCRATCHES]`
+//! `cargo run --release -p scratchwave-benches --example throughput [-- N SCRATCHES]`
 //!
 //! "scan" (tables only) is the CPU visiting the scratches in slot order instead of
 //! traversing the BVH, to separate the lookup from the device. GPU times are split as the
@@ -11,16 +11,16 @@
 //! upload and readback. The scratch lookup (BVH) is built once on the CPU and shared by both
 //! sides, so neither side's time includes it.
 
-use scratchwave_cpu::light_configs::{Rng, SweepRanges, grid_batch};
+use scratchwave_cpu::Backend;
 use scratchwave_cpu::parallel::map;
-use scratchwave_cpu::{Backend, ScratchLookup};
+use scratchwave_host::ScratchLookup;
 use scratchwave_kernel::ghs::presets;
 use scratchwave_kernel::lights::{LightParams, light_integral};
+use scratchwave_kernel::material::{FresnelAngle, Material};
 use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
-use scratchwave_kernel::table::{
-    FresnelAngle, Material, Model, TableParams, TableQuery, evaluate, evaluate_ghs,
-};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate, evaluate_ghs};
 use scratchwave_spirv::{Dispatched, Gpu};
+use scratchwave_testkit::light_configs::{Rng, SweepRanges, grid_batch};
 use std::time::{Duration, Instant};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

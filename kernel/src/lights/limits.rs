@@ -1,0 +1,9 @@
+//! Fixed capacities of the area-light records (the kernel allocates nothing, so lists have
+//! a compile-time size).
+
+/// Capacity of a polygon light (larger polygons are split into fans by the std side).
+pub const MAX_VERTICES: usize = 16;
+
+/// Capacity of a band's breakpoint list: two crossings for each edge of the largest
+/// polygon plus the two ends of the half circle.
+pub const MAX_BREAKPOINTS: usize = 2 * MAX_VERTICES + 2;

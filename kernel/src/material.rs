@@ -1,0 +1,91 @@
+//! The reflectance of a query's surface: a constant, or the Fresnel term of a complex IOR
+//! at a chosen angle (H&P Eqs. 11–13). GPU-visible; used by the tables, the area lights
+//! and the renderer alike.
+
+use crate::fresnel::fresnel;
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+
+gpu_enum! {
+    /// What [`Material`] holds.
+    pub enum MaterialKind {
+        /// A constant reflectance `f`.
+        Constant = 0,
+        /// Fresnel of the complex IOR `n + ik`.
+        Ior = 1,
+    }
+    fallback = Ior;
+}
+
+gpu_enum! {
+    /// Which angle the Fresnel term is evaluated at.
+    pub enum FresnelAngle {
+        /// θd: between `wi` and the half vector (default).
+        ThetaD = 0,
+        /// θi: between `wi` and the normal.
+        ThetaI = 1,
+        /// Normal incidence.
+        Normal = 2,
+    }
+    fallback = ThetaD;
+}
+
+/// Material of one query: a constant reflectance or a complex IOR.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct Material {
+    /// A [`MaterialKind`] as `u32`.
+    pub kind: u32,
+    /// A [`FresnelAngle`] as `u32` (kind 1 only).
+    pub fresnel_angle: u32,
+    /// Constant reflectance (kind 0).
+    pub f: f32,
+    /// Real part of the IOR (kind 1).
+    pub n: f32,
+    /// Imaginary part of the IOR (kind 1).
+    pub k: f32,
+    /// Explicit padding.
+    pub pad: [u32; 3],
+}
+
+const _: () = assert!(core::mem::size_of::<Material>() == 32);
+
+impl Material {
+    /// A constant reflectance `F`.
+    pub const fn constant(f: f32) -> Material {
+        Material {
+            kind: MaterialKind::Constant as u32,
+            fresnel_angle: 0,
+            f,
+            n: 0.0,
+            k: 0.0,
+            pad: [0; 3],
+        }
+    }
+
+    /// Fresnel reflectance of `n + ik` at the given angle.
+    pub const fn ior(n: f32, k: f32, angle: FresnelAngle) -> Material {
+        Material {
+            kind: MaterialKind::Ior as u32,
+            fresnel_angle: angle as u32,
+            f: 0.0,
+            n,
+            k,
+            pad: [0; 3],
+        }
+    }
+
+    /// The reflectance for unit directions `wi`, `wo`.
+    #[inline]
+    pub fn reflectance(&self, wi: Vec3, wo: Vec3) -> f32 {
+        if MaterialKind::from_u32(self.kind) == MaterialKind::Constant {
+            return self.f;
+        }
+        let cos = match FresnelAngle::from_u32(self.fresnel_angle) {
+            FresnelAngle::ThetaI => wi.z,
+            FresnelAngle::Normal => 1.0,
+            FresnelAngle::ThetaD => wi.dot((wi + wo).normalize_or_zero()),
+        };
+        fresnel(cos, self.n, self.k)
+    }
+}

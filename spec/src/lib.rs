@@ -1,0 +1,13 @@
+//! # scratchwave-spec
+//!
+//! Strict readers for scratchwave's JSON inputs: every missing, unknown, mistyped or
+//! out-of-range field is a [`SpecError`] naming its JSON path (e.g. `queries[3].wi`).
+//!
+//! - [`json`]: the field-checking object reader and number conversions;
+//! - [`spec`]: table and footprint specs → the batches of `scratchwave-host`.
+
+pub mod error;
+pub mod json;
+pub mod spec;
+
+pub use error::SpecError;
