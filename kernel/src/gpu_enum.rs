@@ -1,4 +1,4 @@
-//! GPU-visible enums: declared once with [`gpu_enum!`], stored in `Pod` records as `u32`.
+//! GPU-visible enums: declared once with [`gpu_enum!`](crate::gpu_enum!), stored in `Pod` records as `u32`.
 //!
 //! Every such enum is `#[repr(u32)]` (a default `u8` tag needs SPIR-V's Int8 capability)
 //! and gets two decoders:
