@@ -17,7 +17,7 @@
 //! Validity: the band model takes the whole Gaussian along ξ₁ wherever the band is lit.
 //! It is accurate when the light's extent across the band (in direction cosines) is large
 //! against `λ/(2πσ)`; lights that only graze the band or are narrower than it are
-//! over- or under-estimated (measured in `backend-cpu/tests/light_reference.rs`).
+//! over- or under-estimated (measured in `testkit/tests/light_reference.rs`).
 
 use super::band::{SiMode, band_integral};
 use super::band_circle::{BandCircle, Breakpoints};
