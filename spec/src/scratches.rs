@@ -129,11 +129,15 @@ fn json_file(text: &str, out: &mut Vec<Scratch>) -> Result<(), String> {
     Ok(())
 }
 
-/// A CSV file: the header [`CSV_HEADER`], then one scratch per line (blank lines skipped),
+/// A CSV file: the header [`CSV_HEADER`] (spaces around names and a UTF-8 byte order mark
+/// allowed), then one scratch per line (blank lines skipped, `\r\n` accepted),
 /// with the checks of an inline scratch. Errors are `":line: column: msg"`.
 fn csv(text: &str, out: &mut Vec<Scratch>) -> Result<(), String> {
     let mut lines = text.lines().enumerate();
-    let header = lines.next().map(|(_, l)| l.trim()).unwrap_or_default();
+    let header = lines
+        .next()
+        .map(|(_, l)| l.trim_start_matches('\u{feff}').trim())
+        .unwrap_or_default();
     let header: Vec<&str> = header.split(',').map(str::trim).collect();
     if header.join(",") != CSV_HEADER {
         return Err(format!(":1: expected the header {CSV_HEADER:?}"));

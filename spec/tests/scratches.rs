@@ -529,3 +529,21 @@ fn patterns_beyond_the_limit_are_rejected_with_the_estimate() {
     assert_eq!(f, "scratches[1].generate");
     assert!(m.contains(&format!("limit of {}", MAX_SEGMENTS - 1)), "{m}");
 }
+
+#[test]
+fn every_json_example_in_the_docs_is_a_valid_source() {
+    let doc =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../docs/scratches.md"))
+            .unwrap();
+    let blocks: Vec<&str> = doc
+        .split("```json\n")
+        .skip(1)
+        .map(|b| b.split("```").next().unwrap())
+        .collect();
+    assert_eq!(blocks.len(), 3);
+    for b in blocks {
+        let v: Value = serde_json::from_str(b).unwrap();
+        let s = read(json!([v])).unwrap_or_else(|e| panic!("{b}: {e}"));
+        assert!(!s.is_empty());
+    }
+}
