@@ -11,13 +11,16 @@
 //!   validation;
 //! - [`batch`]: the table, light and footprint batches a backend evaluates, and
 //!   [`backend`]: the [`TableBackend`] interface with its typed [`BackendError`];
-//! - [`rng`]: the seeded random stream; [`generate`]: the random-scratch generator.
+//! - [`rng`]: the seeded random stream; [`generate`]: the random-scratch generator of the
+//!   conformance recipes; [`pattern`]: seeded scene scratch patterns (straight, arcs,
+//!   random walks; brushed and circular orientations) split into segments.
 
 pub mod backend;
 pub mod batch;
 pub mod bvh_build;
 pub mod generate;
 pub mod mesh;
+pub mod pattern;
 pub mod queries;
 pub mod rng;
 pub mod scratch_lookup;

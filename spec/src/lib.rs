@@ -4,10 +4,13 @@
 //! out-of-range field is a [`SpecError`] naming its JSON path (e.g. `queries[3].wi`).
 //!
 //! - [`json`]: the field-checking object reader and number conversions;
-//! - [`spec`]: table and footprint specs → the batches of `scratchwave-host`.
+//! - [`spec`]: table and footprint specs → the batches of `scratchwave-host`;
+//! - [`scratches`]: a material's scratch sources (inline, files, seeded patterns) → scratch
+//!   segments (formats in `docs/scratches.md`).
 
 pub mod error;
 pub mod json;
+pub mod scratches;
 pub mod spec;
 
 pub use error::SpecError;

@@ -287,28 +287,30 @@ fn sigma(top: &Obj) -> Result<f32, SpecError> {
 }
 
 fn scratches(top: &Obj) -> Result<Vec<Scratch>, SpecError> {
-    let mut out = Vec::new();
-    for (i, s) in top.arr("scratches")?.iter().enumerate() {
-        let s = Obj::new(
-            s,
-            &format!("scratches[{i}]"),
-            &["p0", "p1", "width", "depth", "profile"],
-        )?;
-        let profile = match s.opt_choice("profile", &["rect", "triangle"])? {
-            Some("triangle") => Profile::Triangle,
-            _ => Profile::Rect,
-        };
-        let (p0, p1) = (point64(&s, "p0")?, point64(&s, "p1")?);
-        let width = json::positive(s.num("width")?, &s.path_of("width"), true)?;
-        let depth = json::positive(s.num("depth")?, &s.path_of("depth"), true)?;
-        out.push(Scratch::from_endpoints(p0, p1, width, depth, profile));
-    }
-    Ok(out)
+    top.arr("scratches")?
+        .iter()
+        .enumerate()
+        .map(|(i, s)| scratch(s, &format!("scratches[{i}]")))
+        .collect()
+}
+
+/// One inline scratch `{"p0": [x, y], "p1": [x, y], "width", "depth", "profile"?}` (µm;
+/// width and depth ≥ 0; profile `"rect"` (default) or `"triangle"`) at `path`.
+pub(crate) fn scratch(v: &Value, path: &str) -> Result<Scratch, SpecError> {
+    let s = Obj::new(v, path, &["p0", "p1", "width", "depth", "profile"])?;
+    let profile = match s.opt_choice("profile", &["rect", "triangle"])? {
+        Some("triangle") => Profile::Triangle,
+        _ => Profile::Rect,
+    };
+    let (p0, p1) = (point64(&s, "p0")?, point64(&s, "p1")?);
+    let width = json::positive(s.num("width")?, &s.path_of("width"), true)?;
+    let depth = json::positive(s.num("depth")?, &s.path_of("depth"), true)?;
+    Ok(Scratch::from_endpoints(p0, p1, width, depth, profile))
 }
 
 /// A point kept in f64 (scratch end points: see `Scratch::from_endpoints`), finite and
 /// within f32 range.
-fn point64(o: &Obj, key: &str) -> Result<[f64; 2], SpecError> {
+pub(crate) fn point64(o: &Obj, key: &str) -> Result<[f64; 2], SpecError> {
     let p = o.vec::<2>(key)?;
     let path = o.path_of(key);
     json::to_f32(p[0], &format!("{path}[0]"))?;
