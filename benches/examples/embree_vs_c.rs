@@ -4,7 +4,7 @@
 //!
 //!     cargo run --release -p scratchwave-benches --example embree_vs_c
 //!         [-- --triangles 1000000 --camera 256 --random 65536 --seconds 1.2 --rounds 12
-//!             --config threads=1]
+//!             --config threads=1 --only sphere,camera,rtcIntersect16]
 //!
 //! Meshes: a closed UV sphere and a triangle soup of `--triangles` each. Rays: `--camera`²
 //! camera rays in 4 × 4 tiles (coherent), `--random` random rays (incoherent), and the camera
@@ -23,6 +23,8 @@
 //! Rust and C produced bit-identical hits (checksum over ids, `t`, `u`, `v`, normals); a
 //! mismatch makes the exit status 1. The portable BVH has no packets: its column is single
 //! rays (`closest_hit`, or `occluded` in the occlusion rows), timed the same way.
+//! `--only` (comma-separated: `sphere`, `soup`, `camera`, `random`, `miss`, Embree calls)
+//! restricts the meshes, ray sets or calls it names.
 
 use scratchwave_cpu::fixtures::{camera_rays, random_rays, sphere_with, triangle_soup};
 use scratchwave_cpu::{Coherence, RayQueries, TriangleBvh};
@@ -46,6 +48,9 @@ struct Options {
     seconds: f64,
     rounds: u32,
     config: String,
+    /// Names selecting rows (`sphere`, `soup`, `camera`, `random`, `miss`, `rtcIntersect1`,
+    /// …): a mesh, ray set or call runs if it is named, or if nothing of its kind is.
+    only: Vec<String>,
 }
 
 fn options() -> Result<Options, String> {
@@ -56,6 +61,7 @@ fn options() -> Result<Options, String> {
         seconds: 1.2,
         rounds: 12,
         config: "threads=1".into(),
+        only: Vec::new(),
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -68,6 +74,7 @@ fn options() -> Result<Options, String> {
             "--seconds" => o.seconds = value.parse().map_err(|e| bad(&e))?,
             "--rounds" => o.rounds = value.parse().map_err(|e| bad(&e))?,
             "--config" => o.config = value,
+            "--only" => o.only = value.split(',').map(str::to_owned).collect(),
             _ => return Err(format!("unknown option {flag}")),
         }
     }
@@ -182,7 +189,13 @@ fn run() -> Result<bool, String> {
     };
 
     let mut rows = Vec::new();
-    for (mesh_name, soup) in [("UV sphere", false), ("soup", true)] {
+    let named = |name: &str| o.only.iter().any(|w| w == name);
+    let wanted = |name: &str, kind: &[&str]| named(name) || !kind.iter().any(|k| named(k));
+    let calls = QueryPath::ALL.map(QueryPath::embree_function);
+    for (mesh_key, mesh_name, soup) in [("sphere", "UV sphere", false), ("soup", "soup", true)] {
+        if !wanted(mesh_key, &["sphere", "soup"]) {
+            continue;
+        }
         let mesh = if soup {
             triangle_soup(o.triangles, 5)
         } else {
@@ -210,6 +223,9 @@ fn run() -> Result<bool, String> {
         );
 
         for (set, (rays_name, rays, coherence)) in ray_sets.iter().enumerate() {
+            if !wanted(rays_name, &["camera", "random", "miss"]) {
+                continue;
+            }
             let mut hits: Vec<Option<Hit>> = vec![None; rays.len()];
             let (_, best, _) = time_passes(whole, rays.len(), |r| {
                 portable.closest_hits(black_box(&rays[r.clone()]), &mut hits[r], *coherence)
@@ -224,6 +240,9 @@ fn run() -> Result<bool, String> {
             let portable_occluded = rays.len() as f64 / best;
 
             for path in QueryPath::ALL {
+                if !wanted(path.embree_function(), &calls) {
+                    continue;
+                }
                 let mut rust: Option<Measurement> = None;
                 let mut from_c: Option<Measurement> = None;
                 let mut same = true;
