@@ -19,7 +19,9 @@
 //! alike. Passes trace blocks of 4096 consecutive rays, each timed in CPU time of the tracing
 //! thread (`CLOCK_THREAD_CPUTIME_ID`: waiting for a core on a shared machine does not count);
 //! rays/s is the ray count over the sum of each block's fastest time (the same estimator on
-//! both sides: what a pass takes when nothing else interrupts it). Every row also checks that
+//! both sides: what a pass takes when nothing else interrupts it). Rust ÷ C is the median
+//! (with quartiles) of the per-round ratios: each round's Rust and C runs are back to back, so
+//! a load that changes over seconds cancels in the pair. Every row also checks that
 //! Rust and C produced bit-identical hits (checksum over ids, `t`, `u`, `v`, normals); a
 //! mismatch makes the exit status 1. The portable BVH has no packets: its column is single
 //! rays (`closest_hit`, or `occluded` in the occlusion rows), timed the same way.
@@ -118,8 +120,32 @@ struct Row {
     path: QueryPath,
     rust: Measurement,
     c: Measurement,
+    /// Rust ÷ C rays/s of each round (the two sides ran back to back).
+    paired: Vec<f64>,
     portable: f64,
     same: bool,
+}
+
+/// The `q`-quantile of sorted `x` (linear interpolation between ranks).
+fn quantile(x: &[f64], q: f64) -> f64 {
+    let Some(last) = x.len().checked_sub(1) else {
+        return f64::NAN;
+    };
+    let at = q * last as f64;
+    let (i, f) = (at.floor() as usize, at.fract());
+    x[i] + f * (x[(i + 1).min(last)] - x[i])
+}
+
+/// `median [lower quartile, upper quartile]` of the paired Rust ÷ C ratios.
+fn paired_summary(paired: &[f64]) -> String {
+    let mut x = paired.to_vec();
+    x.sort_by(f64::total_cmp);
+    format!(
+        "{:.3} [{:.3}, {:.3}]",
+        quantile(&x, 0.5),
+        quantile(&x, 0.25),
+        quantile(&x, 0.75)
+    )
 }
 
 fn main() -> ExitCode {
@@ -180,7 +206,8 @@ fn run() -> Result<bool, String> {
     let sets: Vec<&[Ray]> = ray_sets.iter().map(|(_, r, _)| r.as_slice()).collect();
     let slice = Budget {
         min_seconds: o.seconds / f64::from(o.rounds),
-        min_passes: 1,
+        // At least 2 passes per round: 24 samples of every block even for the slowest rows.
+        min_passes: 2,
         block: BLOCK,
     };
     let whole = Budget {
@@ -246,6 +273,7 @@ fn run() -> Result<bool, String> {
                 let mut rust: Option<Measurement> = None;
                 let mut from_c: Option<Measurement> = None;
                 let mut same = true;
+                let mut paired = Vec::new();
                 for round in 0..o.rounds {
                     let run_rust_once = || run_rust(&scene, rays, path, *coherence, slice);
                     let (r, m) = if round % 2 == 0 {
@@ -258,58 +286,59 @@ fn run() -> Result<bool, String> {
                     let m = m.map_err(|e| e.to_string())?;
                     same &= r.checksum == m.checksum && r.hits == m.hits;
                     same &= rust.is_none_or(|prev| prev.checksum == r.checksum);
+                    paired.push(r.rays_per_second() / m.rays_per_second());
                     rust = Some(rust.map_or(r, |prev| prev.merge(r)));
                     from_c = Some(from_c.map_or(m, |prev| prev.merge(m)));
                 }
                 let (Some(rust), Some(from_c)) = (rust, from_c) else {
                     return Err("no rounds".into());
                 };
-                let row = Row {
+                println!(
+                    "  {rays_name:6} {:14} Rust {:>10}/s ({} passes)  C {:>10}/s ({} passes)  Rust/C {}  hits {} of {}  {}",
+                    path.embree_function(),
+                    si(rust.rays_per_second()),
+                    rust.passes,
+                    si(from_c.rays_per_second()),
+                    from_c.passes,
+                    paired_summary(&paired),
+                    rust.hits,
+                    rust.rays,
+                    if same { "same hits" } else { "HITS DIFFER" }
+                );
+                rows.push(Row {
                     mesh: mesh_name,
                     rays: rays_name,
                     path,
                     rust,
                     c: from_c,
+                    paired,
                     portable: if path == QueryPath::Occluded1 {
                         portable_occluded
                     } else {
                         portable_closest
                     },
                     same,
-                };
-                println!(
-                    "  {rays_name:6} {:14} Rust {:>10}/s ({} passes)  C {:>10}/s ({} passes)  Rust/C {:.3}  hits {} of {}  {}",
-                    path.embree_function(),
-                    si(rust.rays_per_second()),
-                    rust.passes,
-                    si(from_c.rays_per_second()),
-                    from_c.passes,
-                    rust.rays_per_second() / from_c.rays_per_second(),
-                    rust.hits,
-                    rust.rays,
-                    if same { "same hits" } else { "HITS DIFFER" }
-                );
-                rows.push(row);
+                });
             }
         }
     }
 
     println!(
         "\nload average at the end: {}\n\n\
-         | mesh | rays | Embree call | Rust wrapper rays/s | C rays/s | Rust ÷ C | portable BVH rays/s | Rust ÷ portable | hits identical |\n\
+         | mesh | rays | Embree call | Rust wrapper rays/s | C rays/s | Rust ÷ C, paired rounds: median [quartiles] | portable BVH rays/s | Rust ÷ portable | hits identical |\n\
          |---|---|---|---|---|---|---|---|---|",
         load_average()
     );
     for r in &rows {
         let rust = r.rust.rays_per_second();
         println!(
-            "| {} | {} | `{}` | {} | {} | {:.3} | {} | {:.1}× | {} |",
+            "| {} | {} | `{}` | {} | {} | {} | {} | {:.1}× | {} |",
             r.mesh,
             r.rays,
             r.path.embree_function(),
             si(rust),
             si(r.c.rays_per_second()),
-            rust / r.c.rays_per_second(),
+            paired_summary(&r.paired),
             si(r.portable),
             rust / r.portable,
             if r.same { "yes" } else { "NO" }
