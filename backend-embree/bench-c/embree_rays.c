@@ -472,7 +472,7 @@ int main(int argc, char **argv) {
         for (uint32_t b = 0; b < blocks; b++) block_best[b] = INFINITY;
         double total = 0.0;
         unsigned passes = 0;
-        while (passes < min_passes || total < min_seconds) {
+        while (passes < min_passes || (total < min_seconds && rs->n > 0)) {
             for (uint32_t b = 0; b < blocks; b++) {
                 uint32_t first = b * block;
                 RaySet part = {rs->n - first < block ? rs->n - first : block, rs->rays + first};

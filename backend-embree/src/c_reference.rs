@@ -81,8 +81,8 @@ pub struct Budget {
     pub min_seconds: f64,
     /// Minimum number of passes.
     pub min_passes: u32,
-    /// Rays per timed block; rounded up to a multiple of 16 (at least 16), so packets are
-    /// the same as without blocks.
+    /// Rays per timed block; rounded up to a multiple of 16 (at least 16, at most 2³⁰), so
+    /// packets are the same as without blocks.
     pub block: usize,
 }
 
@@ -94,9 +94,10 @@ impl Budget {
         block: 4096,
     };
 
-    /// The block length actually used: [`Budget::block`] rounded up to a multiple of 16.
+    /// The block length actually used: [`Budget::block`] clamped to 16…2³⁰ and rounded up
+    /// to a multiple of 16.
     pub fn block_len(&self) -> usize {
-        self.block.max(16).next_multiple_of(16)
+        self.block.clamp(16, 1 << 30).next_multiple_of(16)
     }
 }
 
@@ -442,7 +443,8 @@ pub fn time_passes(
     let block = budget.block_len();
     let mut block_best = vec![f64::INFINITY; n.div_ceil(block)];
     let (mut passes, mut total) = (0u32, 0.0);
-    while passes < budget.min_passes || total < budget.min_seconds {
+    // An empty ray set takes no time: only the minimum number of passes then.
+    while passes < budget.min_passes || (total < budget.min_seconds && n > 0) {
         for (b, best) in block_best.iter_mut().enumerate() {
             let range = b * block..n.min((b + 1) * block);
             let start = thread_cpu_seconds();
