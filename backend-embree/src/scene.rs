@@ -182,9 +182,16 @@ pub struct Scene {
 
 #[inline]
 fn is_valid(ray: &Ray) -> bool {
-    ray.origin.iter().chain(&ray.dir).all(|c| c.is_finite())
-        && ray.t_near >= 0.0
-        && ray.t_near <= ray.t_far
+    let ([o0, o1, o2], [d0, d1, d2]) = (ray.origin, ray.dir);
+    // `&`, not `&&`: no branches, so all eight tests can run side by side.
+    o0.is_finite()
+        & o1.is_finite()
+        & o2.is_finite()
+        & d0.is_finite()
+        & d1.is_finite()
+        & d2.is_finite()
+        & (ray.t_near >= 0.0)
+        & (ray.t_near <= ray.t_far)
 }
 
 #[inline]
@@ -217,6 +224,7 @@ trait Packet: Copy {
     const WIDTH: usize;
     type Rays: Copy;
     fn empty() -> Self;
+    /// Loads `ray` into `lane` and marks the lane's hit as none (so a packet can be reused).
     fn set(&mut self, lane: usize, ray: &RTCRay);
     fn hit(&self, lane: usize) -> Option<Hit>;
     fn empty_rays() -> Self::Rays;
@@ -224,7 +232,12 @@ trait Packet: Copy {
     fn is_occluded(rays: &Self::Rays, lane: usize) -> bool;
     /// # Safety
     /// `valid` must point to `WIDTH` lanes aligned like the packet; `scene` must be committed.
-    unsafe fn intersect(valid: *const i32, scene: RTCScene, packet: &mut Self, flags: u32);
+    unsafe fn intersect(
+        valid: *const i32,
+        scene: RTCScene,
+        packet: &mut Self,
+        args: &mut ffi::RTCIntersectArguments,
+    );
     /// # Safety
     /// As for `intersect`.
     unsafe fn occluded(valid: *const i32, scene: RTCScene, rays: &mut Self::Rays, flags: u32);
@@ -251,6 +264,10 @@ macro_rules! impl_packet {
             #[inline]
             fn set(&mut self, lane: usize, ray: &RTCRay) {
                 Self::set_ray(&mut self.ray, lane, ray);
+                self.hit.geomID[lane] = ffi::RTC_INVALID_GEOMETRY_ID;
+                self.hit.primID[lane] = ffi::RTC_INVALID_GEOMETRY_ID;
+                self.hit.instID[0][lane] = ffi::RTC_INVALID_GEOMETRY_ID;
+                self.hit.instPrimID[0][lane] = ffi::RTC_INVALID_GEOMETRY_ID;
             }
 
             #[inline]
@@ -293,10 +310,15 @@ macro_rules! impl_packet {
                 rays.tfar[i] == f32::NEG_INFINITY
             }
 
-            unsafe fn intersect(valid: *const i32, scene: RTCScene, packet: &mut Self, flags: u32) {
-                let mut args = ffi::RTCIntersectArguments::new(flags);
+            #[inline]
+            unsafe fn intersect(
+                valid: *const i32,
+                scene: RTCScene,
+                packet: &mut Self,
+                args: &mut ffi::RTCIntersectArguments,
+            ) {
                 // SAFETY: per the trait contract; the packet has the 4.4 layout.
-                unsafe { (ffi::loaded().$intersect)(valid, scene, packet, &mut args) }
+                unsafe { (ffi::loaded().$intersect)(valid, scene, packet, args) }
             }
 
             unsafe fn occluded(valid: *const i32, scene: RTCScene, rays: &mut $rays, flags: u32) {
@@ -370,7 +392,15 @@ impl_packet!(
 
 impl Scene {
     /// The closest hit of one ray (`rtcIntersect1`, incoherent).
+    #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let mut args = ffi::RTCIntersectArguments::new(ffi::RTC_RAY_QUERY_FLAG_INCOHERENT);
+        self.intersect_with(ray, &mut args)
+    }
+
+    /// [`Scene::intersect`] with query arguments made once per batch, not per ray.
+    #[inline]
+    fn intersect_with(&self, ray: &Ray, args: &mut ffi::RTCIntersectArguments) -> Option<Hit> {
         if !is_valid(ray) {
             return None;
         }
@@ -378,9 +408,9 @@ impl Scene {
             ray: to_rtc(ray),
             hit: ffi::RTCHit::default(),
         };
-        let mut args = ffi::RTCIntersectArguments::new(ffi::RTC_RAY_QUERY_FLAG_INCOHERENT);
-        // SAFETY: committed scene; a valid ray in a 4.4-layout RTCRayHit.
-        unsafe { (ffi::loaded().rtcIntersect1)(self.scene.raw, &mut rayhit, &mut args) };
+        // SAFETY: committed scene; a valid ray in a 4.4-layout RTCRayHit; Embree only reads
+        // `args`.
+        unsafe { (ffi::loaded().rtcIntersect1)(self.scene.raw, &mut rayhit, args) };
         let h = &rayhit.hit;
         (h.geomID != ffi::RTC_INVALID_GEOMETRY_ID).then_some(Hit {
             ng: [h.Ng_x, h.Ng_y, h.Ng_z],
@@ -404,38 +434,39 @@ impl Scene {
         rtc.tfar == f32::NEG_INFINITY
     }
 
-    /// Traces up to `P::WIDTH` rays as one packet; lanes past `rays.len()` and invalid rays
-    /// are masked off.
-    fn intersect_packet<P: Packet>(
+    /// Traces consecutive groups of `P::WIDTH` rays as packets; lanes past the end and
+    /// invalid rays are masked off. One packet, mask and argument record serve the whole
+    /// batch (each lane is reloaded and its hit cleared before every call).
+    fn intersect_packets<P: Packet>(
         &self,
         rays: &[Ray],
         hits: &mut [Option<Hit>],
         coherence: Coherence,
     ) {
-        debug_assert!(rays.len() <= P::WIDTH && hits.len() == rays.len());
+        debug_assert!(hits.len() == rays.len());
+        let mut args = ffi::RTCIntersectArguments::new(query_flags(coherence));
         let mut valid = Valid([0i32; 16]);
         let mut packet = P::empty();
-        for (lane, ray) in rays.iter().enumerate() {
-            if is_valid(ray) {
-                valid.0[lane] = -1;
-                packet.set(lane, &to_rtc(ray));
+        for (rays, hits) in rays.chunks(P::WIDTH).zip(hits.chunks_mut(P::WIDTH)) {
+            for lane in 0..P::WIDTH {
+                valid.0[lane] = match rays.get(lane) {
+                    Some(ray) if is_valid(ray) => {
+                        packet.set(lane, &to_rtc(ray));
+                        -1
+                    }
+                    _ => 0,
+                };
             }
-        }
-        // SAFETY: `valid` is 64-byte aligned with ≥ WIDTH lanes; committed scene.
-        unsafe {
-            P::intersect(
-                valid.0.as_ptr(),
-                self.scene.raw,
-                &mut packet,
-                query_flags(coherence),
-            )
-        };
-        for (lane, hit) in hits.iter_mut().enumerate() {
-            *hit = if valid.0[lane] != 0 {
-                packet.hit(lane)
-            } else {
-                None
-            };
+            // SAFETY: `valid` is 64-byte aligned with ≥ WIDTH lanes; committed scene; Embree
+            // only reads `args`.
+            unsafe { P::intersect(valid.0.as_ptr(), self.scene.raw, &mut packet, &mut args) };
+            for (lane, hit) in hits.iter_mut().enumerate() {
+                *hit = if valid.0[lane] != 0 {
+                    packet.hit(lane)
+                } else {
+                    None
+                };
+            }
         }
     }
 
@@ -449,7 +480,7 @@ impl Scene {
                 P::set_ray(&mut packet, lane, &to_rtc(ray));
             }
         }
-        // SAFETY: as in `intersect_packet`.
+        // SAFETY: as in `intersect_packets`.
         unsafe {
             P::occluded(
                 valid.0.as_ptr(),
@@ -466,21 +497,21 @@ impl Scene {
     /// Closest hits of a packet of 4 rays (`rtcIntersect4`).
     pub fn intersect4(&self, rays: &[Ray; 4], coherence: Coherence) -> [Option<Hit>; 4] {
         let mut hits = [None; 4];
-        self.intersect_packet::<ffi::RTCRayHit4>(rays, &mut hits, coherence);
+        self.intersect_packets::<ffi::RTCRayHit4>(rays, &mut hits, coherence);
         hits
     }
 
     /// Closest hits of a packet of 8 rays (`rtcIntersect8`).
     pub fn intersect8(&self, rays: &[Ray; 8], coherence: Coherence) -> [Option<Hit>; 8] {
         let mut hits = [None; 8];
-        self.intersect_packet::<ffi::RTCRayHit8>(rays, &mut hits, coherence);
+        self.intersect_packets::<ffi::RTCRayHit8>(rays, &mut hits, coherence);
         hits
     }
 
     /// Closest hits of a packet of 16 rays (`rtcIntersect16`).
     pub fn intersect16(&self, rays: &[Ray; 16], coherence: Coherence) -> [Option<Hit>; 16] {
         let mut hits = [None; 16];
-        self.intersect_packet::<ffi::RTCRayHit16>(rays, &mut hits, coherence);
+        self.intersect_packets::<ffi::RTCRayHit16>(rays, &mut hits, coherence);
         hits
     }
 
@@ -512,20 +543,14 @@ impl Scene {
         coherence: Coherence,
     ) {
         assert_eq!(rays.len(), hits.len(), "one hit slot per ray");
-        let chunks = rays.chunks(width.max(1)).zip(hits.chunks_mut(width.max(1)));
         match width {
-            4 => {
-                chunks.for_each(|(r, h)| self.intersect_packet::<ffi::RTCRayHit4>(r, h, coherence))
-            }
-            8 => {
-                chunks.for_each(|(r, h)| self.intersect_packet::<ffi::RTCRayHit8>(r, h, coherence))
-            }
-            16 => {
-                chunks.for_each(|(r, h)| self.intersect_packet::<ffi::RTCRayHit16>(r, h, coherence))
-            }
+            4 => self.intersect_packets::<ffi::RTCRayHit4>(rays, hits, coherence),
+            8 => self.intersect_packets::<ffi::RTCRayHit8>(rays, hits, coherence),
+            16 => self.intersect_packets::<ffi::RTCRayHit16>(rays, hits, coherence),
             _ => {
+                let mut args = ffi::RTCIntersectArguments::new(ffi::RTC_RAY_QUERY_FLAG_INCOHERENT);
                 for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
-                    *hit = self.intersect(ray);
+                    *hit = self.intersect_with(ray, &mut args);
                 }
             }
         }
