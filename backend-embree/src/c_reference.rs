@@ -13,7 +13,7 @@
 //! Used by `tests/c_reference.rs` and the `embree_vs_c` example of `scratchwave-benches`.
 
 use crate::Scene;
-use scratchwave_cpu::Coherence;
+use scratchwave_host::Coherence;
 use scratchwave_kernel::ray::{Hit, Ray};
 use std::ffi::OsString;
 use std::io::{BufRead, BufReader, BufWriter, Write};

@@ -4,13 +4,13 @@
 //! `rtcOccluded1`), the hit counts and the checksums over every hit's ids, `t`, `u`, `v`
 //! and normal are equal. The embree_vs_c example times the same paths.
 
-use scratchwave_cpu::Coherence;
-use scratchwave_cpu::fixtures::{Mesh, camera_rays, random_rays, sphere_with, triangle_soup};
 use scratchwave_embree::c_reference::{
     Budget, CProgram, CReferenceError, QueryPath, compile, run_rust, write_workload,
 };
 use scratchwave_embree::{Device, SceneBuilder};
+use scratchwave_host::Coherence;
 use scratchwave_kernel::ray::Ray;
+use scratchwave_testkit::fixtures::{Mesh, camera_rays, random_rays, sphere_with, triangle_soup};
 use std::path::PathBuf;
 
 /// The device configuration both sides use (same build settings, so the same BVH).

@@ -3,10 +3,10 @@
 //! holds a miss, an invalid ray or nothing (short last packet) in the next must report no
 //! hit, and every ray must get the same answer as when traced alone.
 
-use scratchwave_cpu::Coherence;
-use scratchwave_cpu::fixtures::{SplitMix64, camera_rays, sphere_with};
 use scratchwave_embree::{Device, SceneBuilder};
+use scratchwave_host::Coherence;
 use scratchwave_kernel::ray::Ray;
+use scratchwave_testkit::fixtures::{SplitMix64, camera_rays, sphere_with};
 
 #[test]
 fn packets_of_a_batch_do_not_leak_into_each_other() {

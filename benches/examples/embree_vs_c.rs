@@ -1,6 +1,6 @@
 //! Embree through the Rust wrapper (`scratchwave-embree`) against a C program calling the
 //! same library on the same rays (`backend-embree/bench-c/embree_rays.c`, compiled here with
-//! the system `cc`), and against the portable kernel BVH (`scratchwave_cpu::TriangleBvh`):
+//! the system `cc`), and against the portable kernel BVH (`scratchwave_host::TriangleBvh`):
 //!
 //!     cargo run --release -p scratchwave-benches --example embree_vs_c
 //!         [-- --triangles 1000000 --camera 256 --random 65536 --seconds 1.2 --rounds 12
@@ -28,14 +28,14 @@
 //! `--only` (comma-separated: `sphere`, `soup`, `camera`, `random`, `miss`, Embree calls)
 //! restricts the meshes, ray sets or calls it names.
 
-use scratchwave_cpu::fixtures::{camera_rays, random_rays, sphere_with, triangle_soup};
-use scratchwave_cpu::{Coherence, RayQueries, TriangleBvh};
 use scratchwave_embree::c_reference::{
     Budget, CProgram, Measurement, QueryPath, compile, run_rust, thread_cpu_seconds, time_passes,
     write_workload,
 };
 use scratchwave_embree::{Device, SceneBuilder};
+use scratchwave_host::{Coherence, RayQueries, TriangleBvh};
 use scratchwave_kernel::ray::{Hit, Ray};
+use scratchwave_testkit::fixtures::{camera_rays, random_rays, sphere_with, triangle_soup};
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::process::ExitCode;
