@@ -183,7 +183,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
                 .filter(|(f, _)| *f == "cases")
                 .map(|(_, v)| PathBuf::from(v))
                 .collect();
-            if dirs.is_empty() {
+            if dirs.is_empty() && flag(&flags, "scenes").is_none() {
                 dirs = vec![
                     root.join("conformance/cases"),
                     root.join("reference/golden/tables"),
@@ -261,12 +261,13 @@ fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failur
         ("shadow_rays", st.shadow_rays.to_string()),
         ("shading_evaluations", st.shading_evaluations.to_string()),
     ];
-    let write_err = |e: RenderError| match e {
-        RenderError::Output { path, msg } => Failure::Spec(SpecError::Io { path, msg }),
-        other => Failure::Spec(SpecError::Io {
-            path: file.into(),
-            msg: other.to_string(),
-        }),
+    let write_err = |e: RenderError| {
+        Failure::Spec(match e {
+            RenderError::Output { path, msg } => {
+                SpecError::field(path, format!("cannot write: {msg}"))
+            }
+            other => SpecError::field(file, other.to_string()),
+        })
     };
     if let Some(p) = flag(flags, "out") {
         output::write_exr(Path::new(p), &out.image, &attrs).map_err(write_err)?;
@@ -318,7 +319,7 @@ fn conformance_run(
     out_dir: &Path,
 ) -> Result<ExitCode, Failure> {
     let cases = run::load_cases(dirs)?;
-    if cases.is_empty() {
+    if cases.is_empty() && scene_dirs.is_empty() {
         return Err(Failure::Spec(SpecError::Io {
             path: format!("{dirs:?}"),
             msg: "no *.json cases".into(),
@@ -356,7 +357,11 @@ fn conformance_run(
         );
         scene_reports.push(scratchwave_conformance::scenes::compare_scene(f));
     }
-    let mut md = run::markdown(&reports);
+    let mut md = if reports.is_empty() {
+        String::new()
+    } else {
+        run::markdown(&reports)
+    };
     if !scene_reports.is_empty() {
         md += "\n";
         md += &scratchwave_conformance::scenes::markdown(&scene_reports);

@@ -4,7 +4,10 @@
 //! formulas (camera pixel centres, rectangle scratch space, point light), independently of
 //! the renderer's f32 camera, intersection and frame code.
 //!
-//! Tolerance: relative 2e-5 per pixel. The renderer computes `s`, `t`, the hit and `wi` in
+//! Tolerance: relative 2e-5 per pixel, scaled by `max(1, |ln v|/10)` for small values `v`
+//! (a value `e^{−a}` from an exponent `a` computed from inputs a few ULP apart differs by
+//! `~a·ε` relative: the Gaussian tails of the lobe reach `a ≈ 87`); absolute
+//! `f32::MIN_POSITIVE` below f32's normal range, where values carry fewer bits. The renderer computes `s`, `t`, the hit and `wi` in
 //! f32 (a few ULP from the f64 derivation: `x` within ~3e-5 µm of the test's, `wi` within
 //! ~2 ULP), and the coherent BRDF turns such input differences into relative changes of
 //! its value of the same order times its conditioning (measured worst here: see the
@@ -100,25 +103,36 @@ fn check(backend: Backend) {
             "single mode writes R = G = B"
         );
         let got = f64::from(px[0]);
-        let rel = (got - w).abs() / w.abs().max(1e-30);
-        if *w > 0.0 {
+        // Values below f32's normal range (far from the lobe and the diffraction lines)
+        // carry fewer significant bits: compare them absolutely at that scale.
+        let tiny = f64::from(f32::MIN_POSITIVE);
+        let rel = if w.abs() < tiny {
+            if (got - w).abs() <= tiny {
+                0.0
+            } else {
+                f64::INFINITY
+            }
+        } else {
             lit += 1;
-        }
-        worst = worst.max(if *w == 0.0 { got.abs() } else { rel });
+            (got - w).abs() / w.abs() / (w.abs().ln().abs() / 10.0).max(1.0)
+        };
+        worst = worst.max(rel);
         assert!(
-            rel <= REL_TOL || (got - w).abs() <= 1e-12,
+            rel <= REL_TOL,
             "{backend:?} pixel ({}, {}): rendered {got}, table {w} (rel {rel:e})",
             k % W,
             k / W
         );
     }
+    // The Werner lobe and the scratches' diffraction cover part of the view; make sure the
+    // comparison is not mostly zeros.
     assert!(
-        lit == W * H,
-        "every pixel sees the lit plate ({lit} of {})",
+        lit > W * H / 3,
+        "too few non-zero pixels ({lit} of {})",
         W * H
     );
     eprintln!(
-        "{backend:?}: worst relative difference {worst:e} over {} pixels",
+        "{backend:?}: worst relative difference {worst:e}, {lit} of {} pixels non-zero",
         W * H
     );
 }
