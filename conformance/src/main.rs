@@ -276,7 +276,7 @@ fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failur
         output::write_png(Path::new(p), &out.image, exposure).map_err(write_err)?;
     }
     eprintln!(
-        "rendered {}x{} in {:.3} s (+{:.3} s build), {:.2} Mrays/s, {} shading evaluations ({})",
+        "rendered {}x{} in {:.3} s (+{:.3} s build), {:.4} Mrays/s, {} shading evaluations ({})",
         out.image.width,
         out.image.height,
         st.seconds,

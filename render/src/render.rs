@@ -3,13 +3,17 @@
 //! only ([`scratchwave_kernel::render`]).
 
 use crate::prepare::Prepared;
+use crate::scene::Footprint;
 use crate::scene::Scene;
 use rayon::prelude::*;
 use scratchwave_host::{Coherence, RayQueries};
+use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::glam::Vec3;
-use scratchwave_kernel::ray::{Hit, Ray};
+use scratchwave_kernel::ray::Hit;
 use scratchwave_kernel::render::area::{self, SceneLight, SceneLightKind};
 use scratchwave_kernel::render::camera::Camera;
+use scratchwave_kernel::render::camera::RayDifferential;
+use scratchwave_kernel::render::footprint::footprint_ellipse;
 use scratchwave_kernel::render::pixel::sample_offset;
 use scratchwave_kernel::render::shading::{self, ShadeMaterial};
 use scratchwave_kernel::render::spectrum::{self, SpectrumMode};
@@ -140,12 +144,20 @@ fn render_tile<Q: RayQueries + ?Sized>(
         }
     }
     let mut rays = Vec::with_capacity(pixels.len() * spp as usize);
+    let mut diffs = Vec::with_capacity(pixels.len() * spp as usize);
     for &(i, j) in &pixels {
         for k in 0..spp {
             let (ox, oy) = sample_offset(j * w + i, k, spp);
-            rays.push(cam.ray(i as f32 + ox, j as f32 + oy).ray);
+            let rd = cam.ray(i as f32 + ox, j as f32 + oy);
+            rays.push(rd.ray);
+            diffs.push(rd);
         }
     }
+    let footprint_scale = if scene.settings.footprint == Footprint::Ellipse {
+        1.0 / (spp as f32).sqrt()
+    } else {
+        0.0
+    };
     let mut hits = vec![None; rays.len()];
     queries.closest_hits(&rays, &mut hits, Coherence::Coherent);
     let spec = scene.spectrum;
@@ -166,7 +178,8 @@ fn render_tile<Q: RayQueries + ?Sized>(
                 shade_hit(
                     prep,
                     queries,
-                    &rays[idx],
+                    &diffs[idx],
+                    footprint_scale,
                     &hit,
                     spec.mode,
                     n_lambda,
@@ -192,7 +205,8 @@ fn render_tile<Q: RayQueries + ?Sized>(
 fn shade_hit<Q: RayQueries + ?Sized>(
     prep: &Prepared,
     queries: &Q,
-    ray: &Ray,
+    rd: &RayDifferential,
+    footprint_scale: f32,
     hit: &Hit,
     mode: SpectrumMode,
     n_lambda: u32,
@@ -209,12 +223,18 @@ fn shade_hit<Q: RayQueries + ?Sized>(
     let mi = surface.material as usize;
     let m: &ShadeMaterial = &prep.materials[mi];
     let set = prep.lookups[mi].set();
+    let ray = &rd.ray;
     let sp: SurfacePoint = surface_point(surface, hit_position(ray.origin, ray.dir, hit.t));
     let wo = sp.to_local(-Vec3::from_array(ray.dir).normalize_or_zero());
     if !(wo.z > 0.0) {
         return;
     }
     let ng = Vec3::from_array(hit.ng);
+    let fp = if footprint_scale > 0.0 {
+        footprint_ellipse(rd, hit.t, &sp, footprint_scale)
+    } else {
+        Ellipse::default()
+    };
     let lambda = |k: u32| spectrum::wavelength_nm(mode, k, samples, single_nm);
     for light in &prep.lights {
         let kind = SceneLightKind::from_u32(light.kind);
@@ -235,7 +255,7 @@ fn shade_hit<Q: RayQueries + ?Sized>(
                 continue;
             }
             for k in 0..n_lambda {
-                let l = shading::delta_light(m, &sp, wo, light, lambda(k), &set);
+                let l = shading::delta_light(m, &sp, wo, light, lambda(k), &set, &fp);
                 *shading_evals += 1;
                 spectrum::accumulate(mode, k, lambda(k), l, acc);
             }

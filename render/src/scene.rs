@@ -136,6 +136,9 @@ pub struct Spectrum {
 pub enum Footprint {
     /// The point model at each sample's ray.
     None,
+    /// Velinov §4: the footprint ellipse from ray differentials (shrunk by `1/√spp`), the
+    /// incoherent model averaged over it (other models stay point-sampled).
+    Ellipse,
 }
 
 /// Sampling settings.

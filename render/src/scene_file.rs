@@ -607,12 +607,7 @@ fn settings(v: Option<&Value>) -> Result<RenderSettings, SpecError> {
     let o = Obj::new(v, "render", &["spp", "footprint"])?;
     let spp = int(&o, "spp", 1, MAX_SPP, 1)? as u32;
     let footprint = match o.opt_choice("footprint", &["none", "ellipse"])? {
-        Some("ellipse") => {
-            return Err(SpecError::field(
-                o.path_of("footprint"),
-                "\"ellipse\" is not implemented in this version (use \"none\")",
-            ));
-        }
+        Some("ellipse") => Footprint::Ellipse,
         _ => Footprint::None,
     };
     Ok(RenderSettings { spp, footprint })

@@ -5,14 +5,16 @@
 //! | file | what |
 //! |---|---|
 //! | `camera` | orthographic/perspective primary rays and their ray differentials |
+//! | `footprint` | the pixel footprint ellipse from ray differentials; Velinov averaged over it |
 //! | `surface` | hit position, shading frame and scratch-space position of an object |
 //! | `shading` | the BRDF of a scene material and the contribution of each light kind |
 //! | `area` | deterministic quadrature nodes over sphere and triangle lights |
 //! | `spectrum` | wavelengths of a spectrum mode, CIE 1931 2° observer, XYZ → linear sRGB |
-//! | `pixel` | stratified sub-pixel positions (SplitMix64 seeded by pixel index) |
+//! | `pixel` | deterministic sub-pixel positions (rank-1 lattice, hashed rotation per pixel) |
 
 pub mod area;
 pub mod camera;
+pub mod footprint;
 pub mod pixel;
 pub mod shading;
 pub mod spectrum;

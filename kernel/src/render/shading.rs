@@ -14,7 +14,9 @@
 //!   quadrature of [`super::area`].
 
 use super::area::{AreaNode, SceneLight, SceneLightKind};
+use super::footprint::velinov_footprint_brdf;
 use super::surface::SurfacePoint;
+use crate::footprint::Ellipse;
 use crate::ghs::GhsParams;
 use crate::lights::{
     BandRule, Cone, Light, LightParams, LightQuery, LightRegion, SiMode, light_integral,
@@ -121,8 +123,34 @@ pub fn brdf<S: ScratchSet>(
     f
 }
 
+/// [`brdf`], or with a footprint (`fp.a1 > 0`) Velinov's model averaged over it
+/// ([`velinov_footprint_brdf`], Velinov §4; a GHS base is weighted by `1 − ρc` at the
+/// footprint centre). The coherent models and GHS are point-sampled at the centre.
+pub fn brdf_footprint<S: ScratchSet>(
+    m: &ShadeMaterial,
+    wi: Vec3,
+    wo: Vec3,
+    x: Vec2,
+    fp: &Ellipse,
+    lambda_nm: f32,
+    set: &S,
+) -> f32 {
+    if !(fp.a1 > 0.0) || SceneModel::from_u32(m.model) != SceneModel::Velinov {
+        return brdf(m, wi, wo, x, lambda_nm, set);
+    }
+    let mut f = velinov_footprint_brdf(&m.table, &m.material, wi, wo, fp, lambda_nm, set);
+    if BaseKind::from_u32(m.base) == BaseKind::Ghs {
+        let g = table::evaluate_ghs(&m.ghs, &query(m, wi, wo, x, lambda_nm));
+        if g > 0.0 {
+            f += base_weight(m, x, set) * g;
+        }
+    }
+    f
+}
+
 /// Radiance towards `wo` from a point light (`light.kind` Point) or a directional light,
-/// unoccluded: `f·max(cos θi, 0)·I/d²` or `f·max(cos θi, 0)·E`.
+/// unoccluded: `f·max(cos θi, 0)·I/d²` or `f·max(cos θi, 0)·E`; `fp` is the pixel
+/// footprint ([`brdf_footprint`]; `a1 = 0` for the point model).
 pub fn delta_light<S: ScratchSet>(
     m: &ShadeMaterial,
     sp: &SurfacePoint,
@@ -130,6 +158,7 @@ pub fn delta_light<S: ScratchSet>(
     light: &SceneLight,
     lambda_nm: f32,
     set: &S,
+    fp: &Ellipse,
 ) -> f32 {
     let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
     let (wi_world, scale) = if SceneLightKind::from_u32(light.kind) == SceneLightKind::Directional {
@@ -146,7 +175,7 @@ pub fn delta_light<S: ScratchSet>(
     if !(wi.z > 0.0) {
         return 0.0;
     }
-    brdf(m, wi, wo, sp.x_um, lambda_nm, set) * wi.z * scale
+    brdf_footprint(m, wi, wo, sp.x_um, fp, lambda_nm, set) * wi.z * scale
 }
 
 /// One quadrature node's radiance towards `wo`: `f·max(cos θi, 0)·L·dω` (the shadow ray is
