@@ -172,7 +172,7 @@ fn triangle_node(light: &SceneLight, p: Vec3, i: u32) -> Option<AreaNode> {
     }
     let b = i - a * a;
     let nf = n as f32;
-    let (ca, cb) = if b % 2 == 0 {
+    let (ca, cb) = if b & 1 == 0 {
         let k = (b / 2) as f32;
         // Corners (a, k), (a+1, k), (a+1, k+1) in (row, column) lattice units.
         ((3.0 * a as f32 + 2.0) / 3.0, (3.0 * k + 1.0) / 3.0)

@@ -257,10 +257,11 @@ pub fn velinov_area_light<S: ScratchSet>(
     let mirror_base = BaseKind::from_u32(m.base) == BaseKind::Smooth || m.table.base_gaussian == 1;
     if mirror_base {
         let wm = Vec3::new(-wo.x, -wo.y, wo.z);
-        if let Some(region) = LightRegion::new(&kl)
-            && wm.z > 0.0
-            && region.contains(wm)
-        {
+        let inside = match LightRegion::new(&kl) {
+            Some(region) => wm.z > 0.0 && region.contains(wm),
+            None => false,
+        };
+        if inside {
             l += base_weight(m, sp.x_um, set) * m.material.reflectance(wm, wo);
         }
     }
