@@ -7,12 +7,14 @@ use scratchwave_kernel::math;
 use scratchwave_kernel::ray::Triangle;
 use scratchwave_kernel::render::area::{SceneLight, SceneLightKind};
 use scratchwave_kernel::render::shading::ShadeMaterial;
-use scratchwave_kernel::render::surface::{Surface, SurfaceKind};
+use scratchwave_kernel::render::surface::{Surface, SurfaceKind, TriangleUv};
 
 /// Everything the tile loop reads, independent of the ray backend.
 pub struct Prepared {
     /// Triangles in primitive-id order.
     pub triangles: Vec<Triangle>,
+    /// Texture coordinates of each primitive (zero except on meshes).
+    pub uvs: Vec<TriangleUv>,
     /// Object index of each primitive.
     pub prim_object: Vec<u32>,
     /// Shading geometry per object.
@@ -33,6 +35,7 @@ pub fn estimate_bytes(scene: &Scene) -> u64 {
         tris += match &o.shape {
             Shape::Rectangle { .. } => 2,
             Shape::Sphere { segments, .. } => 4 * u64::from(*segments) * u64::from(*segments),
+            Shape::Mesh { indices, .. } => indices.len() as u64 * 2,
         };
     }
     let scratches: u64 = scene
@@ -49,6 +52,7 @@ pub fn estimate_bytes(scene: &Scene) -> u64 {
 pub fn prepare(scene: &Scene) -> Prepared {
     let mut triangles = Vec::new();
     let mut prim_object = Vec::new();
+    let mut uvs = Vec::new();
     let mut surfaces = Vec::new();
     for (oi, o) in scene.objects.iter().enumerate() {
         let before = triangles.len();
@@ -115,7 +119,34 @@ pub fn prepare(scene: &Scene) -> Prepared {
                     ..Surface::default()
                 }
             }
+            Shape::Mesh {
+                vertices,
+                indices,
+                uvs: tex,
+                uv_um,
+            } => {
+                uvs.resize(triangles.len(), TriangleUv::default());
+                for t in indices {
+                    let [a, b, c] = t.map(|i| i as usize);
+                    triangles.push(Triangle {
+                        v0: vertices[a],
+                        v1: vertices[b],
+                        v2: vertices[c],
+                    });
+                    uvs.push(TriangleUv {
+                        uv: [tex[a], tex[b], tex[c]],
+                        pad: [0.0; 2],
+                    });
+                }
+                Surface {
+                    kind: SurfaceKind::Mesh as u32,
+                    material: o.material as u32,
+                    scale_um: *uv_um,
+                    ..Surface::default()
+                }
+            }
         };
+        uvs.resize(triangles.len(), TriangleUv::default());
         surfaces.push(surface);
         prim_object.resize(triangles.len(), oi as u32);
         debug_assert!(triangles.len() > before);
@@ -179,6 +210,7 @@ pub fn prepare(scene: &Scene) -> Prepared {
     Prepared {
         triangles,
         prim_object,
+        uvs,
         surfaces,
         materials: scene.materials.iter().map(|m| m.shade).collect(),
         lookups,

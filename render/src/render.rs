@@ -17,7 +17,9 @@ use scratchwave_kernel::render::footprint::footprint_ellipse;
 use scratchwave_kernel::render::pixel::sample_offset;
 use scratchwave_kernel::render::shading::{self, ShadeMaterial};
 use scratchwave_kernel::render::spectrum::{self, SpectrumMode};
-use scratchwave_kernel::render::surface::{SurfacePoint, hit_position, surface_point};
+use scratchwave_kernel::render::surface::{
+    SurfaceKind, SurfacePoint, hit_position, mesh_point, surface_point,
+};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
@@ -224,7 +226,20 @@ fn shade_hit<Q: RayQueries + ?Sized>(
     let m: &ShadeMaterial = &prep.materials[mi];
     let set = prep.lookups[mi].set();
     let ray = &rd.ray;
-    let sp: SurfacePoint = surface_point(surface, hit_position(ray.origin, ray.dir, hit.t));
+    let p = hit_position(ray.origin, ray.dir, hit.t);
+    let sp: SurfacePoint = if SurfaceKind::from_u32(surface.kind) == SurfaceKind::Mesh {
+        let prim = hit.prim_id as usize;
+        mesh_point(
+            &prep.triangles[prim],
+            &prep.uvs[prim],
+            hit.u,
+            hit.v,
+            p,
+            surface.scale_um,
+        )
+    } else {
+        surface_point(surface, p)
+    };
     let wo = sp.to_local(-Vec3::from_array(ray.dir).normalize_or_zero());
     if !(wo.z > 0.0) {
         return;

@@ -71,6 +71,18 @@ pub enum Shape {
         /// `2·segments` steps).
         segments: u32,
     },
+    /// A triangle mesh (read from OBJ); scratch space `UV·uv_um` µm, frame x along
+    /// `∂P/∂u`, flat (geometric) normals.
+    Mesh {
+        /// Vertex positions.
+        vertices: Vec<[f32; 3]>,
+        /// One index triple per triangle.
+        indices: Vec<[u32; 3]>,
+        /// Texture coordinates per vertex (same indexing as `vertices`).
+        uvs: Vec<[f32; 2]>,
+        /// µm of scratch space per unit of u and v.
+        uv_um: f32,
+    },
 }
 
 /// A material: the kernel record and its scratches (µm).

@@ -125,7 +125,7 @@ pub fn scene_from_value(v: &Value, name: &str, base_dir: &Path) -> Result<Scene,
     };
     let camera = camera(top.req("camera")?)?;
     let (materials, by_name) = materials(top.req("materials")?, base_dir)?;
-    let objects = objects(&top, &by_name)?;
+    let objects = objects(&top, &by_name, base_dir)?;
     let lights = lights(&top)?;
     let spectrum = spectrum(top.get("spectrum"))?;
     let settings = settings(top.get("render"))?;
@@ -159,11 +159,15 @@ fn largest_consumer(scene: &Scene) -> String {
     let pixels = u64::from(scene.camera.width_px) * u64::from(scene.camera.height_px) * 28;
     let mut best = (pixels, "camera.width_px".to_string());
     for (i, o) in scene.objects.iter().enumerate() {
-        if let Shape::Sphere { segments, .. } = o.shape {
-            let b = 4 * u64::from(segments) * u64::from(segments) * 264;
-            if b > best.0 {
-                best = (b, format!("objects[{i}].segments"));
+        let (tris, key) = match &o.shape {
+            Shape::Sphere { segments, .. } => {
+                (4 * u64::from(*segments) * u64::from(*segments), "segments")
             }
+            Shape::Mesh { indices, .. } => (indices.len() as u64, "file"),
+            Shape::Rectangle { .. } => (2, "size"),
+        };
+        if tris * 264 > best.0 {
+            best = (tris * 264, format!("objects[{i}].{key}"));
         }
     }
     for m in &scene.materials {
@@ -347,7 +351,94 @@ fn materials(
     Ok((out, by_name))
 }
 
-fn objects(top: &Obj, by_name: &HashMap<String, usize>) -> Result<Vec<Object>, SpecError> {
+/// Largest mesh (triangles).
+pub const MAX_MESH_TRIANGLES: usize = 1 << 26;
+
+/// `{"shape": "mesh", "file", "uv_um", "material"}`: an OBJ file (relative to the scene's
+/// directory) read with `tobj`, triangulated, one index per vertex (positions and texture
+/// coordinates); every vertex needs texture coordinates.
+fn read_mesh(o: &Obj, base_dir: &Path) -> Result<Shape, SpecError> {
+    let fp = o.path_of("file");
+    let name = o
+        .req("file")?
+        .as_str()
+        .ok_or_else(|| SpecError::field(&fp, "expected a file name"))?;
+    let file = base_dir.join(name);
+    let uv_um = pos(o, "uv_um", false)?;
+    let (models, _) = tobj::load_obj(
+        &file,
+        &tobj::LoadOptions {
+            triangulate: true,
+            single_index: true,
+            ..tobj::LoadOptions::default()
+        },
+    )
+    .map_err(|e| SpecError::field(&fp, format!("cannot read mesh {}: {e}", file.display())))?;
+    let (mut vertices, mut indices, mut uvs) = (Vec::new(), Vec::new(), Vec::new());
+    for m in &models {
+        let mesh = &m.mesh;
+        let n = mesh.positions.len() / 3;
+        if mesh.texcoords.len() != 2 * n {
+            return Err(SpecError::field(
+                &fp,
+                format!(
+                    "mesh {:?} in {} has no texture coordinates on every vertex (scratch space is UV·uv_um)",
+                    m.name,
+                    file.display()
+                ),
+            ));
+        }
+        let base = vertices.len() as u64;
+        for k in 0..n {
+            let p = [
+                mesh.positions[3 * k],
+                mesh.positions[3 * k + 1],
+                mesh.positions[3 * k + 2],
+            ];
+            if !p.iter().all(|x| x.is_finite()) {
+                return Err(SpecError::field(
+                    &fp,
+                    format!("vertex {k} of mesh {:?} is not finite", m.name),
+                ));
+            }
+            vertices.push(p);
+            uvs.push([mesh.texcoords[2 * k], mesh.texcoords[2 * k + 1]]);
+        }
+        for t in mesh.indices.chunks(3) {
+            if t.len() == 3 {
+                let idx = [t[0], t[1], t[2]].map(|i| u64::from(i) + base);
+                if idx.iter().any(|&i| i >= vertices.len() as u64) {
+                    return Err(SpecError::field(&fp, "a face refers to a missing vertex"));
+                }
+                indices.push(idx.map(|i| i as u32));
+            }
+        }
+        if indices.len() > MAX_MESH_TRIANGLES {
+            return Err(SpecError::field(
+                &fp,
+                format!("more than {MAX_MESH_TRIANGLES} triangles"),
+            ));
+        }
+    }
+    if indices.is_empty() {
+        return Err(SpecError::field(
+            &fp,
+            format!("{} contains no triangles", file.display()),
+        ));
+    }
+    Ok(Shape::Mesh {
+        vertices,
+        indices,
+        uvs,
+        uv_um,
+    })
+}
+
+fn objects(
+    top: &Obj,
+    by_name: &HashMap<String, usize>,
+    base_dir: &Path,
+) -> Result<Vec<Object>, SpecError> {
     let mut out = Vec::new();
     for (i, v) in top.arr("objects")?.iter().enumerate() {
         let path = format!("objects[{i}]");
@@ -356,11 +447,13 @@ fn objects(top: &Obj, by_name: &HashMap<String, usize>) -> Result<Vec<Object>, S
             &path,
             &[
                 "shape", "center", "tangent", "normal", "size", "material", "radius", "pole",
-                "uv_um", "segments",
+                "uv_um", "segments", "file",
             ],
         )?
-        .choice("shape", &["rectangle", "sphere"])?;
-        let o = if kind == "rectangle" {
+        .choice("shape", &["rectangle", "sphere", "mesh"])?;
+        let o = if kind == "mesh" {
+            Obj::new(v, &path, &["shape", "file", "uv_um", "material"])?
+        } else if kind == "rectangle" {
             Obj::new(
                 v,
                 &path,
@@ -385,6 +478,11 @@ fn objects(top: &Obj, by_name: &HashMap<String, usize>) -> Result<Vec<Object>, S
                 .get(name)
                 .ok_or_else(|| SpecError::field(&mp, format!("unknown material {name:?}")))?
         };
+        if kind == "mesh" {
+            let shape = read_mesh(&o, base_dir)?;
+            out.push(Object { shape, material });
+            continue;
+        }
         let center = vec3(&o, "center")?;
         let perpendicular = |t: [f32; 3], n: [f32; 3], key: &str| {
             if dot(t, n).abs() > 1.0e-4 {

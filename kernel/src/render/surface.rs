@@ -7,6 +7,7 @@
 //! * Sphere: `u = φ/2π`, `v = θ/π` about the pole axis `normal` (φ from `tangent`);
 //!   scratch space `(u, 1 − v)·uv_um` µm; frame `x` along `∂P/∂u`, `z` the outward normal,
 //!   `y = z × x` (towards the pole).
+//! * Mesh: scratch space `UV·uv_um` µm, frame `x` along `∂P/∂u` ([`mesh_point`]).
 
 use crate::math;
 use bytemuck::{Pod, Zeroable};
@@ -19,6 +20,8 @@ gpu_enum! {
         Rectangle = 0,
         /// A sphere (a tessellation in the ray structures; shading uses the exact sphere).
         Sphere = 1,
+        /// A triangle mesh with texture coordinates ([`mesh_point`]).
+        Mesh = 2,
     }
     fallback = Rectangle;
 }
@@ -130,5 +133,63 @@ pub fn surface_point(s: &Surface, p: Vec3) -> SurfacePoint {
             x_um: Vec2::new(d.dot(t), d.dot(y)) * s.scale_um,
             um_per_unit: Vec2::new(s.scale_um, s.scale_um),
         }
+    }
+}
+
+/// Texture coordinates of one mesh triangle's vertices. GPU-visible: 32 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct TriangleUv {
+    /// `(u, v)` of `v0`, `v1`, `v2`.
+    pub uv: [[f32; 2]; 3],
+    /// Explicit padding.
+    pub pad: [f32; 2],
+}
+
+const _: () = assert!(core::mem::size_of::<TriangleUv>() == 32);
+
+/// The shading frame and scratch-space position on a mesh triangle at barycentrics
+/// `(b1, b2)` (weights of `v1`, `v2`): scratch space `UV·uv_um` µm (Werner §5: scratches
+/// in the texture parametrisation), `z` the geometric normal (flat shading), `x` along
+/// `∂P/∂u` projected into the plane (the first edge when the UVs are degenerate),
+/// `y = z × x`.
+pub fn mesh_point(
+    tri: &crate::ray::Triangle,
+    uv: &TriangleUv,
+    b1: f32,
+    b2: f32,
+    p: Vec3,
+    uv_um: f32,
+) -> SurfacePoint {
+    let v0 = Vec3::from_array(tri.v0);
+    let e1 = Vec3::from_array(tri.v1) - v0;
+    let e2 = Vec3::from_array(tri.v2) - v0;
+    let z = e1.cross(e2).normalize_or_zero();
+    let t0 = Vec2::from_array(uv.uv[0]);
+    let d1 = Vec2::from_array(uv.uv[1]) - t0;
+    let d2 = Vec2::from_array(uv.uv[2]) - t0;
+    let det = d1.x * d2.y - d2.x * d1.y;
+    let (dpdu, dpdv) = if math::abs(det) > 0.0 {
+        ((e1 * d2.y - e2 * d1.y) / det, (e2 * d1.x - e1 * d2.x) / det)
+    } else {
+        (e1, e2)
+    };
+    let xu = dpdu - z * z.dot(dpdu);
+    let x = if xu.length_squared() > 0.0 {
+        xu.normalize()
+    } else {
+        e1.normalize_or_zero()
+    };
+    let y = z.cross(x);
+    let uvp = t0 + d1 * b1 + d2 * b2;
+    let lu = math::max(dpdu.length(), 1.0e-30);
+    let lv = math::max(dpdv.length(), 1.0e-30);
+    SurfacePoint {
+        position: p,
+        x,
+        y,
+        z,
+        x_um: uvp * uv_um,
+        um_per_unit: Vec2::new(uv_um / lu, uv_um / lv),
     }
 }
