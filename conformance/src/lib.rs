@@ -12,3 +12,4 @@ pub mod generate;
 pub mod light_case;
 pub mod light_spec;
 pub mod run;
+pub mod scenes;

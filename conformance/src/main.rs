@@ -11,10 +11,13 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const USAGE: &str = "usage:
-  scratchwave run [--cases DIR] [--out DIR]      conformance run over the committed cases
+  scratchwave run [--cases DIR] [--scenes DIR] [--out DIR]
+                                                  conformance run over the committed cases
+                                                  and scenes (cpu vs embree renders)
   scratchwave table SPEC.json [--backend cpu|simd|spirv|all]
   scratchwave footprint SPEC.json [--backend cpu|simd|spirv]
-  scratchwave light SPEC.json [--backend cpu|simd|spirv]";
+  scratchwave light SPEC.json [--backend cpu|simd|spirv]
+  scratchwave render SCENE.json [--backend cpu|embree] [--out IMAGE.exr] [--png PREVIEW.png] [--exposure EV]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -153,18 +156,34 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             print!("{out}");
             Ok(ExitCode::SUCCESS)
         }
+        "render" => {
+            let (pos, flags) = parse_flags(rest, &["backend", "out", "png", "exposure"])?;
+            let file = match pos.as_slice() {
+                [f] => *f,
+                _ => return Err(Failure::Usage("render takes exactly one SCENE.json".into())),
+            };
+            render_command(file, &flags)
+        }
         "run" => {
-            let (pos, flags) = parse_flags(rest, &["cases", "out"])?;
+            let (pos, flags) = parse_flags(rest, &["cases", "scenes", "out"])?;
             if !pos.is_empty() {
                 return Err(Failure::Usage("run takes no positional arguments".into()));
             }
             let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+            let mut scene_dirs: Vec<PathBuf> = flags
+                .iter()
+                .filter(|(f, _)| *f == "scenes")
+                .map(|(_, v)| PathBuf::from(v))
+                .collect();
+            if scene_dirs.is_empty() && flag(&flags, "cases").is_none() {
+                scene_dirs = vec![root.join("conformance/scenes")];
+            }
             let mut dirs: Vec<PathBuf> = flags
                 .iter()
                 .filter(|(f, _)| *f == "cases")
                 .map(|(_, v)| PathBuf::from(v))
                 .collect();
-            if dirs.is_empty() {
+            if dirs.is_empty() && flag(&flags, "scenes").is_none() {
                 dirs = vec![
                     root.join("conformance/cases"),
                     root.join("reference/golden/tables"),
@@ -173,7 +192,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             let out_dir = flag(&flags, "out")
                 .map(PathBuf::from)
                 .unwrap_or_else(|| root.join("target/conformance"));
-            conformance_run(&dirs, &out_dir)
+            conformance_run(&dirs, &scene_dirs, &out_dir)
         }
         "-h" | "--help" | "help" => {
             println!("{USAGE}");
@@ -181,6 +200,92 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
         }
         other => Err(Failure::Usage(format!("unknown command {other:?}"))),
     }
+}
+
+/// `scratchwave render`: renders on the chosen backend, writes the EXR and/or PNG (each
+/// through a temporary file, so a failure leaves nothing at the target), and reports time,
+/// Mrays/s and shading evaluations on stderr.
+fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failure> {
+    use scratchwave_render::{Backend, RenderError, output};
+    use std::io::{IsTerminal, Write};
+    let backend = match flag(flags, "backend").unwrap_or("cpu") {
+        "cpu" => Backend::Cpu,
+        "embree" => Backend::Embree,
+        other => {
+            return Err(Failure::Usage(format!(
+                "unknown render backend {other:?} (expected cpu or embree)"
+            )));
+        }
+    };
+    let exposure = match flag(flags, "exposure") {
+        Some(e) => e
+            .parse::<f32>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| {
+                Failure::Usage(format!("--exposure must be a finite number, got {e:?}"))
+            })?,
+        None => 0.0,
+    };
+    let scene = scratchwave_render::scene_file::read_scene(Path::new(file))?;
+    let tty = std::io::stderr().is_terminal();
+    let progress = |done: usize, total: usize| {
+        if tty {
+            let mut e = std::io::stderr().lock();
+            let _ = write!(
+                e,
+                "\rrendering {:3}% ({done}/{total} tiles)",
+                done * 100 / total.max(1)
+            );
+            let _ = e.flush();
+        }
+    };
+    let out = match scratchwave_render::render_scene(&scene, backend, &progress) {
+        Ok(o) => o,
+        Err(RenderError::Input(e)) => return Err(Failure::Spec(e)),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(1));
+        }
+    };
+    if tty {
+        eprintln!();
+    }
+    let st = &out.stats;
+    let attrs = [
+        ("scene", scene.name.clone()),
+        ("backend", backend.name().to_string()),
+        ("render_seconds", format!("{:.6}", st.seconds)),
+        ("build_seconds", format!("{:.6}", out.build_seconds)),
+        ("primary_rays", st.primary_rays.to_string()),
+        ("shadow_rays", st.shadow_rays.to_string()),
+        ("shading_evaluations", st.shading_evaluations.to_string()),
+    ];
+    let write_err = |e: RenderError| {
+        Failure::Spec(match e {
+            RenderError::Output { path, msg } => {
+                SpecError::field(path, format!("cannot write: {msg}"))
+            }
+            other => SpecError::field(file, other.to_string()),
+        })
+    };
+    if let Some(p) = flag(flags, "out") {
+        output::write_exr(Path::new(p), &out.image, &attrs).map_err(write_err)?;
+    }
+    if let Some(p) = flag(flags, "png") {
+        output::write_png(Path::new(p), &out.image, exposure).map_err(write_err)?;
+    }
+    eprintln!(
+        "rendered {}x{} in {:.3} s (+{:.3} s build), {:.4} Mrays/s, {} shading evaluations ({})",
+        out.image.width,
+        out.image.height,
+        st.seconds,
+        out.build_seconds,
+        st.mrays_per_s(),
+        st.shading_evaluations,
+        backend.name()
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 /// `--backend all`: every available backend, pairwise max abs/rel differences; exit 1 beyond
@@ -208,9 +313,13 @@ fn table_all(s: &TableBatch) -> Result<ExitCode, Failure> {
     })
 }
 
-fn conformance_run(dirs: &[PathBuf], out_dir: &Path) -> Result<ExitCode, Failure> {
+fn conformance_run(
+    dirs: &[PathBuf],
+    scene_dirs: &[PathBuf],
+    out_dir: &Path,
+) -> Result<ExitCode, Failure> {
     let cases = run::load_cases(dirs)?;
-    if cases.is_empty() {
+    if cases.is_empty() && scene_dirs.is_empty() {
         return Err(Failure::Spec(SpecError::Io {
             path: format!("{dirs:?}"),
             msg: "no *.json cases".into(),
@@ -234,18 +343,42 @@ fn conformance_run(dirs: &[PathBuf], out_dir: &Path) -> Result<ExitCode, Failure
         );
         reports.push(run::run_case(c, &list));
     }
-    let md = run::markdown(&reports);
+    let scene_files: Vec<PathBuf> = scene_dirs
+        .iter()
+        .flat_map(|d| scratchwave_conformance::scenes::scene_files(d))
+        .collect();
+    let mut scene_reports = Vec::new();
+    for (i, f) in scene_files.iter().enumerate() {
+        eprintln!(
+            "[scene {}/{}] {} (cpu vs embree)",
+            i + 1,
+            scene_files.len(),
+            f.display()
+        );
+        scene_reports.push(scratchwave_conformance::scenes::compare_scene(f));
+    }
+    let mut md = if reports.is_empty() {
+        String::new()
+    } else {
+        run::markdown(&reports)
+    };
+    if !scene_reports.is_empty() {
+        md += "\n";
+        md += &scratchwave_conformance::scenes::markdown(&scene_reports);
+    }
     println!("{md}");
     let failed = reports
         .iter()
         .flat_map(|r| &r.rows)
         .filter(|r| !r.pass)
         .count()
-        + reports.iter().map(|r| r.errors.len()).sum::<usize>();
+        + reports.iter().map(|r| r.errors.len()).sum::<usize>()
+        + scene_reports.iter().filter(|r| !r.pass).count();
     let total = reports
         .iter()
         .map(|r| r.rows.len() + r.errors.len())
-        .sum::<usize>();
+        .sum::<usize>()
+        + scene_reports.len();
     println!("conformance: {} passed, {} failed", total - failed, failed);
     let io = |e: std::io::Error| {
         Failure::Spec(SpecError::Io {
@@ -256,8 +389,12 @@ fn conformance_run(dirs: &[PathBuf], out_dir: &Path) -> Result<ExitCode, Failure
     std::fs::create_dir_all(out_dir).map_err(io)?;
     let header = format!("backends: {}\n{}\n\n", names.join(", "), notes.join("\n"));
     std::fs::write(out_dir.join("report.md"), header + &md).map_err(io)?;
-    let js =
-        serde_json::json!({"backends": names, "notes": notes, "cases": run::to_json(&reports)});
+    let js = serde_json::json!({"backends": names, "notes": notes, "cases": run::to_json(&reports),
+            "scenes": scene_reports.iter().map(|r| serde_json::json!({
+                "name": r.name, "width": r.size.0, "height": r.size.1, "worst_rel": r.worst,
+                "p999_rel": r.p999, "bad_pixels": r.bad_pixels, "max_bad_pixels": r.max_bad_pixels,
+                "rel_tol": r.rel_tol, "why": r.why, "pass": r.pass, "error": r.error,
+            })).collect::<Vec<_>>()});
     std::fs::write(
         out_dir.join("report.json"),
         serde_json::to_string_pretty(&js).unwrap_or_default(),

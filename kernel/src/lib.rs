@@ -38,6 +38,7 @@ pub mod lights;
 pub mod material;
 pub mod math;
 pub mod ray;
+pub mod render;
 pub mod sampling;
 pub mod scratch;
 pub mod segment2d;

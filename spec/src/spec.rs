@@ -51,23 +51,7 @@ pub fn table_spec(v: &Value) -> Result<TableBatch, SpecError> {
         ..TableParams::default()
     };
     if let Some(o) = top.get("options") {
-        let o = Obj::new(o, "options", &["eta", "depth_term", "base"])?;
-        let velinov_only = |key: &str| -> Result<(), SpecError> {
-            if o.get(key).is_some() && model != Model::Velinov {
-                return Err(SpecError::field(
-                    o.path_of(key),
-                    "only meaningful for model \"velinov\"",
-                ));
-            }
-            Ok(())
-        };
-        velinov_only("eta")?;
-        velinov_only("base")?;
-        params.eta = u32::from(o.opt_choice("eta", &["finite", "infinite"])? == Some("infinite"));
-        params.depth_term =
-            u32::from(o.opt_choice("depth_term", &["small_angle", "exact"])? == Some("exact"));
-        params.base_gaussian =
-            u32::from(o.opt_choice("base", &["none", "gaussian"])? == Some("gaussian"));
+        options(o, &top.path_of("options"), model, &mut params)?;
     }
     let queries = queries(&top, true, Some(material))?;
     Ok(TableBatch {
@@ -77,6 +61,34 @@ pub fn table_spec(v: &Value) -> Result<TableBatch, SpecError> {
         default_material: material,
         ghs: None,
     })
+}
+
+/// Model options `{"eta", "depth_term", "base"}` at `path` into `params` (`eta` and `base`
+/// only for model `velinov`).
+pub fn options(
+    v: &Value,
+    path: &str,
+    model: Model,
+    params: &mut TableParams,
+) -> Result<(), SpecError> {
+    let o = Obj::new(v, path, &["eta", "depth_term", "base"])?;
+    let velinov_only = |key: &str| -> Result<(), SpecError> {
+        if o.get(key).is_some() && model != Model::Velinov {
+            return Err(SpecError::field(
+                o.path_of(key),
+                "only meaningful for model \"velinov\"",
+            ));
+        }
+        Ok(())
+    };
+    velinov_only("eta")?;
+    velinov_only("base")?;
+    params.eta = u32::from(o.opt_choice("eta", &["finite", "infinite"])? == Some("infinite"));
+    params.depth_term =
+        u32::from(o.opt_choice("depth_term", &["small_angle", "exact"])? == Some("exact"));
+    params.base_gaussian =
+        u32::from(o.opt_choice("base", &["none", "gaussian"])? == Some("gaussian"));
+    Ok(())
 }
 
 /// The queries of a table; `x` is required when `need_x`, a per-query material is allowed
@@ -159,7 +171,7 @@ pub const GHS_MODEL_ID: u32 = 3;
 
 /// A GHS material: `{"sigma_s_um", "beta", "p", "b_um", "c", "ior": [n, k], "diff_color"?,
 /// "layer"?}` with the ranges the kernel documents.
-fn ghs_material(v: &Value, path: &str) -> Result<GhsParams, SpecError> {
+pub fn ghs_material(v: &Value, path: &str) -> Result<GhsParams, SpecError> {
     let m = Obj::new(
         v,
         path,
@@ -279,7 +291,8 @@ pub fn footprint_spec(v: &Value) -> Result<FootprintBatch, SpecError> {
     Ok(FootprintBatch { sigma_um, queries })
 }
 
-fn sigma(top: &Obj) -> Result<f32, SpecError> {
+/// `sigma_um` of `top` (default [`DEFAULT_SIGMA_UM`]), > 0.
+pub fn sigma(top: &Obj) -> Result<f32, SpecError> {
     match top.opt_num("sigma_um")? {
         Some(s) => json::positive(s, &top.path_of("sigma_um"), false),
         None => Ok(DEFAULT_SIGMA_UM),
@@ -287,10 +300,17 @@ fn sigma(top: &Obj) -> Result<f32, SpecError> {
 }
 
 fn scratches(top: &Obj) -> Result<Vec<Scratch>, SpecError> {
-    top.arr("scratches")?
+    scratch_list(top.req("scratches")?, &top.path_of("scratches"))
+}
+
+/// An inline scratch list `[{"p0", "p1", "width", "depth", "profile"?}, ...]` at `path`
+/// (µm).
+pub fn scratch_list(v: &Value, path: &str) -> Result<Vec<Scratch>, SpecError> {
+    v.as_array()
+        .ok_or_else(|| SpecError::field(path, "expected an array"))?
         .iter()
         .enumerate()
-        .map(|(i, s)| scratch(s, &format!("scratches[{i}]")))
+        .map(|(i, s)| scratch(s, &format!("{path}[{i}]")))
         .collect()
 }
 
@@ -330,7 +350,7 @@ fn point(o: &Obj, key: &str) -> Result<[f32; 2], SpecError> {
 /// A direction, normalised in f64 unless it is already unit within the kernel's
 /// `UNIT_TOLERANCE` (then used as given, so f32 inputs are not rounded twice); zero length is
 /// an error (z ≤ 0 is allowed and evaluates to 0).
-fn direction(o: &Obj, key: &str) -> Result<[f32; 3], SpecError> {
+pub fn direction(o: &Obj, key: &str) -> Result<[f32; 3], SpecError> {
     let d = o.vec::<3>(key)?;
     let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     if !(l2 > 0.0 && l2.is_finite()) {
@@ -347,7 +367,8 @@ fn direction(o: &Obj, key: &str) -> Result<[f32; 3], SpecError> {
     Ok([(d[0] * s) as f32, (d[1] * s) as f32, (d[2] * s) as f32])
 }
 
-fn material(v: &Value, path: &str) -> Result<Material, SpecError> {
+/// A reflectance `{"F"}` or `{"ior": [n, k], "fresnel_angle"?}` at `path`.
+pub fn material(v: &Value, path: &str) -> Result<Material, SpecError> {
     let m = Obj::new(v, path, &["F", "ior", "fresnel_angle"])?;
     match (m.get("F"), m.get("ior")) {
         (Some(_), Some(_)) => Err(SpecError::field(

@@ -1,0 +1,310 @@
+//! Per-hit shading: the BRDF of a scene material and the radiance each light kind sends
+//! towards the viewer. Directions are in the shading frame (`z` = normal), `wo` towards the
+//! viewer, `wi` towards the light.
+//!
+//! * Werner, Werner-blended and Velinov evaluate [`table::evaluate`] (the `table` command's
+//!   function); GHS evaluates [`table::evaluate_ghs`].
+//! * `werner_blended` and `velinov` with a GHS base add `(1 − ρc)·f_base` (Werner 2017 §5;
+//!   Velinov 2018 Eq. 7's `(1 − ρc)` weight), ρc from [`scratch_area_density`].
+//! * Point light: `f·max(cos θi, 0)·I/d²`; directional: `f·max(cos θi, 0)·E`.
+//! * Area lights for `velinov`: Velinov's closed form ([`light_integral`], Eqs. 19–41)
+//!   times the radiance and the visible fraction of the light; a smooth base (or Velinov's
+//!   Gaussian base, whose lobe integrates to a mirror) adds `(1 − ρc)·F·L` when the mirror
+//!   direction of `wo` lies in the light. Every other model and a GHS base use the
+//!   quadrature of [`super::area`].
+
+use super::area::{AreaNode, SceneLight, SceneLightKind};
+use super::footprint::velinov_footprint_brdf;
+use super::surface::SurfacePoint;
+use crate::footprint::Ellipse;
+use crate::ghs::GhsParams;
+use crate::lights::{
+    BandRule, Cone, Light, LightParams, LightQuery, LightRegion, SiMode, light_integral,
+};
+use crate::material::Material;
+use crate::math;
+use crate::scratch::{ScratchSet, scratch_area_density};
+use crate::table::{self, Model, TableParams, TableQuery};
+use bytemuck::{Pod, Zeroable};
+use glam::{Vec2, Vec3};
+
+gpu_enum! {
+    /// The model of a [`ShadeMaterial`].
+    pub enum SceneModel {
+        /// Werner 2017 Eq. 15 (coherent base + scratches).
+        Werner = 0,
+        /// Werner 2017 §5: coherent scratches + `(1 − ρc)` base.
+        WernerBlended = 1,
+        /// Velinov 2018 Eq. 7 (incoherent) + `(1 − ρc)` base.
+        Velinov = 2,
+        /// Holzschuch & Pacanowski's two-scale BRDF alone.
+        Ghs = 3,
+    }
+    fallback = Werner;
+}
+
+gpu_enum! {
+    /// The base added with weight `(1 − ρc)` to `werner_blended` and `velinov`.
+    pub enum BaseKind {
+        /// No base.
+        None = 0,
+        /// A smooth mirror of the material's reflectance (a delta: only area lights whose
+        /// solid angle contains the mirror direction are reflected).
+        Smooth = 1,
+        /// A GHS surface ([`ShadeMaterial::ghs`]).
+        Ghs = 2,
+    }
+    fallback = None;
+}
+
+/// One scene material. GPU-visible: 128 bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct ShadeMaterial {
+    /// Model options exactly as a table spec gives them (`model` is the table model for
+    /// the scratch models).
+    pub table: TableParams,
+    /// The scratch models' reflectance.
+    pub material: Material,
+    /// GHS parameters: the material of model `ghs`, or the base of [`BaseKind::Ghs`].
+    pub ghs: GhsParams,
+    /// A [`SceneModel`] as `u32`.
+    pub model: u32,
+    /// A [`BaseKind`] as `u32`.
+    pub base: u32,
+    /// Explicit padding.
+    pub pad: [u32; 2],
+}
+
+const _: () = assert!(core::mem::size_of::<ShadeMaterial>() == 128);
+
+/// The scratch-model table query of one shading evaluation.
+#[inline]
+fn query(m: &ShadeMaterial, wi: Vec3, wo: Vec3, x: Vec2, lambda_nm: f32) -> TableQuery {
+    TableQuery {
+        wi: wi.to_array(),
+        lambda_nm,
+        wo: wo.to_array(),
+        x: x.to_array(),
+        material: m.material,
+        ..TableQuery::default()
+    }
+}
+
+/// `1 − ρc` at `x` (≥ 0), the base weight.
+#[inline]
+pub fn base_weight<S: ScratchSet>(m: &ShadeMaterial, x: Vec2, set: &S) -> f32 {
+    math::max(1.0 - scratch_area_density(set, x, m.table.sigma_um), 0.0)
+}
+
+/// The material's BRDF (1/sr, no cosine) for shading-frame `wi`, `wo` at scratch-space
+/// `x` (µm) and λ (nm), the base included.
+pub fn brdf<S: ScratchSet>(
+    m: &ShadeMaterial,
+    wi: Vec3,
+    wo: Vec3,
+    x: Vec2,
+    lambda_nm: f32,
+    set: &S,
+) -> f32 {
+    let q = query(m, wi, wo, x, lambda_nm);
+    if SceneModel::from_u32(m.model) == SceneModel::Ghs {
+        return table::evaluate_ghs(&m.ghs, &q);
+    }
+    let mut f = table::evaluate(&m.table, &q, set);
+    if BaseKind::from_u32(m.base) == BaseKind::Ghs
+        && Model::from_u32(m.table.model) != Model::Werner
+    {
+        let g = table::evaluate_ghs(&m.ghs, &q);
+        if g > 0.0 {
+            f += base_weight(m, x, set) * g;
+        }
+    }
+    f
+}
+
+/// [`brdf`], or with a footprint (`fp.a1 > 0`) Velinov's model averaged over it
+/// ([`velinov_footprint_brdf`], Velinov §4; a GHS base is weighted by `1 − ρc` at the
+/// footprint centre). The coherent models and GHS are point-sampled at the centre.
+pub fn brdf_footprint<S: ScratchSet>(
+    m: &ShadeMaterial,
+    wi: Vec3,
+    wo: Vec3,
+    x: Vec2,
+    fp: &Ellipse,
+    lambda_nm: f32,
+    set: &S,
+) -> f32 {
+    if !(fp.a1 > 0.0) || SceneModel::from_u32(m.model) != SceneModel::Velinov {
+        return brdf(m, wi, wo, x, lambda_nm, set);
+    }
+    let mut f = velinov_footprint_brdf(&m.table, &m.material, wi, wo, fp, lambda_nm, set);
+    if BaseKind::from_u32(m.base) == BaseKind::Ghs {
+        let g = table::evaluate_ghs(&m.ghs, &query(m, wi, wo, x, lambda_nm));
+        if g > 0.0 {
+            f += base_weight(m, x, set) * g;
+        }
+    }
+    f
+}
+
+/// Radiance towards `wo` from a point light (`light.kind` Point) or a directional light,
+/// unoccluded: `f·max(cos θi, 0)·I/d²` or `f·max(cos θi, 0)·E`; `fp` is the pixel
+/// footprint ([`brdf_footprint`]; `a1 = 0` for the point model).
+pub fn delta_light<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    light: &SceneLight,
+    lambda_nm: f32,
+    set: &S,
+    fp: &Ellipse,
+) -> f32 {
+    let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
+    let (wi_world, scale) = if SceneLightKind::from_u32(light.kind) == SceneLightKind::Directional {
+        (p0.normalize_or_zero(), light.emission)
+    } else {
+        let d = p0 - sp.position;
+        let d2 = d.length_squared();
+        if !(d2 > 0.0) {
+            return 0.0;
+        }
+        (d / math::sqrt(d2), light.emission / d2)
+    };
+    let wi = sp.to_local(wi_world);
+    if !(wi.z > 0.0) {
+        return 0.0;
+    }
+    brdf_footprint(m, wi, wo, sp.x_um, fp, lambda_nm, set) * wi.z * scale
+}
+
+/// One quadrature node's radiance towards `wo`: `f·max(cos θi, 0)·L·dω` (the shadow ray is
+/// the caller's).
+pub fn area_node_radiance<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    node: &AreaNode,
+    radiance: f32,
+    lambda_nm: f32,
+    set: &S,
+) -> f32 {
+    let wi = sp.to_local(node.dir);
+    if !(wi.z > 0.0) {
+        return 0.0;
+    }
+    brdf(m, wi, wo, sp.x_um, lambda_nm, set) * wi.z * radiance * node.weight
+}
+
+/// Whether `m` integrates area lights in closed form ([`velinov_area_light`]) rather than
+/// by quadrature ([`area_node_radiance`]).
+#[inline]
+pub fn closed_form_area(m: &ShadeMaterial) -> bool {
+    SceneModel::from_u32(m.model) == SceneModel::Velinov
+}
+
+/// The kernel light record of a sphere or triangle light relative to the shading point, in
+/// the shading frame.
+pub fn local_light(sp: &SurfacePoint, light: &SceneLight) -> Light {
+    let rel = |p: [f32; 4]| {
+        sp.to_local(Vec3::new(p[0], p[1], p[2]) - sp.position)
+            .to_array()
+    };
+    if SceneLightKind::from_u32(light.kind) == SceneLightKind::Sphere {
+        Light::sphere(rel(light.p0), light.p0[3], Cone::Asin)
+    } else {
+        let mut l = Light::sphere([0.0; 3], 0.0, Cone::Asin);
+        l.kind = crate::lights::LightKind::Polygon as u32;
+        l.count = 3;
+        let (a, b, c) = (rel(light.p0), rel(light.p1), rel(light.p2));
+        l.vertices[0] = [a[0], a[1], a[2], 0.0];
+        l.vertices[1] = [b[0], b[1], b[2], 0.0];
+        l.vertices[2] = [c[0], c[1], c[2], 0.0];
+        l
+    }
+}
+
+/// Velinov's model under a sphere or triangle light, unoccluded: the closed-form scratch
+/// integral ([`light_integral`], Velinov Eqs. 19–41, extent band rule, exact Si) times the
+/// radiance, plus the mirror part of a smooth or Gaussian base. A GHS base is added by the
+/// caller through [`base_node_radiance`].
+pub fn velinov_area_light<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    light: &SceneLight,
+    lambda_nm: f32,
+    set: &S,
+) -> f32 {
+    let kl = local_light(sp, light);
+    let params = LightParams {
+        sigma_um: m.table.sigma_um,
+        eta: m.table.eta,
+        depth_term: m.table.depth_term,
+        si_mode: SiMode::Exact as u32,
+        bands: BandRule::Extent as u32,
+        pad: [0; 3],
+    };
+    let q = LightQuery {
+        wo: wo.to_array(),
+        lambda_nm,
+        x: sp.x_um.to_array(),
+        pad: [0.0; 2],
+        material: m.material,
+        light: kl,
+    };
+    let mut l = light_integral(&params, &q, set);
+    let mirror_base = BaseKind::from_u32(m.base) == BaseKind::Smooth || m.table.base_gaussian == 1;
+    if mirror_base {
+        let wm = Vec3::new(-wo.x, -wo.y, wo.z);
+        let inside = match LightRegion::new(&kl) {
+            Some(region) => wm.z > 0.0 && region.contains(wm),
+            None => false,
+        };
+        if inside {
+            l += base_weight(m, sp.x_um, set) * m.material.reflectance(wm, wo);
+        }
+    }
+    l * light.emission
+}
+
+/// A GHS base's share of one quadrature node for Velinov's model under an area light:
+/// `(1 − ρc)·f_ghs·cos θi·L·dω` (0 without a GHS base).
+pub fn base_node_radiance<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    node: &AreaNode,
+    radiance: f32,
+    lambda_nm: f32,
+    set: &S,
+) -> f32 {
+    if BaseKind::from_u32(m.base) != BaseKind::Ghs {
+        return 0.0;
+    }
+    let wi = sp.to_local(node.dir);
+    if !(wi.z > 0.0) {
+        return 0.0;
+    }
+    let q = query(m, wi, wo, sp.x_um, lambda_nm);
+    let g = table::evaluate_ghs(&m.ghs, &q);
+    base_weight(m, sp.x_um, set) * g * wi.z * radiance * node.weight
+}
+
+/// The shadow ray from `p` (offset along the geometric normal `ng` to the side of `dir`)
+/// towards a point at distance `dist` along unit `dir`, stopping short of it by the same
+/// relative margin.
+pub fn shadow_ray(p: Vec3, ng: Vec3, dir: Vec3, dist: f32) -> crate::ray::Ray {
+    let scale = math::max(
+        math::max(math::abs(p.x), math::abs(p.y)),
+        math::max(math::abs(p.z), dist),
+    );
+    let eps = SHADOW_EPSILON * math::max(scale, 1.0);
+    let n = ng.normalize_or_zero();
+    let side = if n.dot(dir) >= 0.0 { 1.0 } else { -1.0 };
+    let o = p + n * (side * eps);
+    crate::ray::Ray::new(o.to_array(), dir.to_array()).with_interval(0.0, dist - 2.0 * eps)
+}
+
+/// Relative offset of shadow-ray origins from the surface (and of their end from the light).
+pub const SHADOW_EPSILON: f32 = 1.0e-4;

@@ -1,0 +1,108 @@
+//! # scratchwave-render
+//!
+//! Renders scenes of scratched and GHS surfaces to images on the CPU, with the portable
+//! kernel BVH ([`scratchwave_host::TriangleBvh`]) or Embree (`scratchwave-embree`) for the
+//! primary and shadow rays. Every formula (camera rays, frames, BRDFs, light integrals,
+//! colour matching) is a kernel function from [`scratchwave_kernel::render`]; this crate
+//! holds the scene model, the JSON reader, the preparation, the tile loop and the writers.
+//!
+//! ```no_run
+//! let scene = scratchwave_render::scene_file::read_scene(std::path::Path::new("scene.json"))?;
+//! let out = scratchwave_render::render_scene(&scene, scratchwave_render::Backend::Cpu, &|_, _| {})?;
+//! scratchwave_render::output::write_exr(std::path::Path::new("out.exr"), &out.image, &[])?;
+//! # Ok::<(), scratchwave_render::RenderError>(())
+//! ```
+
+pub mod output;
+pub mod prepare;
+pub mod render;
+pub mod scene;
+pub mod scene_file;
+
+pub use render::{Image, RenderStats};
+pub use scene::Scene;
+
+use scratchwave_spec::SpecError;
+use std::time::Instant;
+
+/// Which structure answers the ray queries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Backend {
+    /// The portable kernel BVH (`scratchwave_host::TriangleBvh`).
+    Cpu,
+    /// Embree 4.
+    Embree,
+}
+
+impl Backend {
+    /// `"cpu"` or `"embree"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Cpu => "cpu",
+            Backend::Embree => "embree",
+        }
+    }
+}
+
+/// Why a render failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// Bad input: the message names the file or JSON path.
+    #[error(transparent)]
+    Input(#[from] SpecError),
+    /// Embree could not be loaded or failed.
+    #[error("embree: {0}")]
+    Embree(#[from] scratchwave_embree::Error),
+    /// Writing an output file failed.
+    #[error("{path}: cannot write: {msg}")]
+    Output {
+        /// File path.
+        path: String,
+        /// What went wrong.
+        msg: String,
+    },
+}
+
+/// A finished render.
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    /// The image.
+    pub image: Image,
+    /// Counts and tile-loop time.
+    pub stats: RenderStats,
+    /// Preparation and acceleration-structure build time (s).
+    pub build_seconds: f64,
+}
+
+/// Prepares `scene`, builds the chosen ray structure and renders.
+pub fn render_scene(
+    scene: &Scene,
+    backend: Backend,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Rendered, RenderError> {
+    let t0 = Instant::now();
+    let prep = prepare::prepare(scene);
+    let (image, stats, build_seconds) = match backend {
+        Backend::Cpu => {
+            let bvh = prep.cpu_bvh();
+            let build = t0.elapsed().as_secs_f64();
+            let (i, s) = render::render(scene, &prep, &bvh, progress);
+            (i, s, build)
+        }
+        Backend::Embree => {
+            let device = scratchwave_embree::Device::new()?;
+            let mut b = scratchwave_embree::SceneBuilder::new(&device)?;
+            let (v, i) = prep.indexed();
+            b.add_triangle_mesh(&v, &i)?;
+            let es = b.commit()?;
+            let build = t0.elapsed().as_secs_f64();
+            let (i, s) = render::render(scene, &prep, &es, progress);
+            (i, s, build)
+        }
+    };
+    Ok(Rendered {
+        image,
+        stats,
+        build_seconds,
+    })
+}
