@@ -196,3 +196,25 @@ fn unwritable_out_leaves_nothing() {
     );
     assert!(!target.exists());
 }
+
+#[test]
+fn missing_and_malformed_meshes() {
+    let mesh = |file: &str| {
+        format!(r#"{{"shape": "mesh", "file": "{file}", "uv_um": 1000, "material": "m"}}"#)
+    };
+    let rect = r#"{"shape": "rectangle", "center": [0, 0, 0], "tangent": [1, 0, 0],
+               "normal": [0, 0, 1], "size": [2, 2], "material": "m"}"#;
+    std::fs::write(dir().join("broken.obj"), "v 0 0 0\nf 1 2 three\n").unwrap();
+    rejects(
+        "missing_mesh",
+        rect,
+        &mesh("does_not_exist.obj"),
+        "objects[0].file: cannot read mesh",
+    );
+    rejects(
+        "malformed_mesh",
+        rect,
+        &mesh("broken.obj"),
+        "objects[0].file: cannot read mesh",
+    );
+}

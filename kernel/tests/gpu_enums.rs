@@ -6,6 +6,11 @@ use scratchwave_kernel::ghs::{DiffColor, Layer};
 use scratchwave_kernel::gpu_enum::UnknownVariant;
 use scratchwave_kernel::lights::{BandRule, Cone, LightKind, SiMode};
 use scratchwave_kernel::material::{FresnelAngle, MaterialKind};
+use scratchwave_kernel::render::area::SceneLightKind;
+use scratchwave_kernel::render::camera::Projection;
+use scratchwave_kernel::render::shading::{BaseKind, SceneModel};
+use scratchwave_kernel::render::spectrum::SpectrumMode;
+use scratchwave_kernel::render::surface::SurfaceKind;
 use scratchwave_kernel::scratch::{DepthTerm, EtaMode, Profile};
 use scratchwave_kernel::table::Model;
 
@@ -32,6 +37,60 @@ where
 
 #[test]
 fn every_gpu_enum_round_trips_and_rejects_unknown_codes() {
+    check(
+        "Projection",
+        &[Projection::Orthographic, Projection::Perspective],
+        Projection::Orthographic,
+        Projection::from_u32,
+    );
+    check(
+        "SurfaceKind",
+        &[
+            SurfaceKind::Rectangle,
+            SurfaceKind::Sphere,
+            SurfaceKind::Mesh,
+        ],
+        SurfaceKind::Rectangle,
+        SurfaceKind::from_u32,
+    );
+    check(
+        "SceneLightKind",
+        &[
+            SceneLightKind::Point,
+            SceneLightKind::Directional,
+            SceneLightKind::Sphere,
+            SceneLightKind::Triangle,
+        ],
+        SceneLightKind::Point,
+        SceneLightKind::from_u32,
+    );
+    check(
+        "SceneModel",
+        &[
+            SceneModel::Werner,
+            SceneModel::WernerBlended,
+            SceneModel::Velinov,
+            SceneModel::Ghs,
+        ],
+        SceneModel::Werner,
+        SceneModel::from_u32,
+    );
+    check(
+        "BaseKind",
+        &[BaseKind::None, BaseKind::Smooth, BaseKind::Ghs],
+        BaseKind::None,
+        BaseKind::from_u32,
+    );
+    check(
+        "SpectrumMode",
+        &[
+            SpectrumMode::Single,
+            SpectrumMode::Rgb,
+            SpectrumMode::Spectral,
+        ],
+        SpectrumMode::Single,
+        SpectrumMode::from_u32,
+    );
     check(
         "Model",
         &[Model::Werner, Model::WernerBlended, Model::Velinov],
