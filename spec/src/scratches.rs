@@ -7,7 +7,7 @@
 
 use crate::error::SpecError;
 use crate::json::{self, Obj};
-use crate::spec::{point64, scratch};
+use crate::spec::{point64, scratch, segment};
 use scratchwave_host::pattern::{
     Count, Distribution, MAX_SEGMENTS, Orientation, PatternError, ProfileChoice, ScratchPattern,
     Shape,
@@ -201,13 +201,7 @@ fn csv_row(line: &str) -> Result<Scratch, SpecError> {
             ));
         }
     };
-    Ok(Scratch::from_endpoints(
-        [x[0], x[1]],
-        [x[2], x[3]],
-        width,
-        depth,
-        profile,
-    ))
+    segment([x[0], x[1]], [x[2], x[3]], width, depth, profile, "x1")
 }
 
 /// The `generate` object at `gp` → the pattern (with [`MAX_SEGMENTS`] as its limit) and

@@ -589,3 +589,24 @@ fn a_caller_budget_limits_every_source_kind() {
     // The documented limit is the largest budget: a larger one is clamped to it.
     assert_eq!(n(&pattern, usize::MAX).map(|s| s.len()), Ok(10));
 }
+
+/// Regression (fuzz target `scratch_sources`): end points within the f32 range but more
+/// than 2·f32::MAX apart gave a scratch with an infinite half length, which reflects
+/// nothing; such segments are now rejected, inline and in files.
+#[test]
+fn segments_longer_than_the_f32_range_are_rejected() {
+    // Minimized fuzz input: [{"p0":[-3e38,-3e38],"p1":[3e38,3e38],"width":1,"depth":1}]
+    rejects(
+        json!([{"p0": [-3e38, -3e38], "p1": [3e38, 3e38], "width": 1, "depth": 1}]),
+        "scratches[0].p1",
+        "segment too long: 8.485",
+    );
+    rejects(
+        json!([{"file": "too_long.csv"}]),
+        "scratches[0].file",
+        "too_long.csv:3: x1: segment too long",
+    );
+    // The longest segment that still fits: half length f32::MAX-ish, finite.
+    let s = read(json!([{"p0": [-3e38, 0], "p1": [3e38, 0], "width": 1, "depth": 1}])).unwrap();
+    assert_eq!(s[0].half_len, 3e38);
+}
