@@ -23,6 +23,10 @@ fi
 
 log() { printf '[fuzz] %s\n' "$*" >&2; }
 
+if ! command -v c++ >/dev/null 2>&1; then
+  log "libFuzzer needs a C++ compiler: run scripts/setup.sh (installs g++)"
+  exit 1
+fi
 if ! rustup toolchain list | grep -q "^$NIGHTLY"; then
   log "installing $NIGHTLY"
   rustup toolchain install "$NIGHTLY" --profile minimal
