@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite: setup, formatting, lints, docs, every crate's tests (including the
-# SPIR-V build and the lavapipe conformance cases) and the conformance run.
+# SPIR-V build and the lavapipe conformance cases), the conformance run and a fuzz smoke
+# (scripts/fuzz.sh 20: every cargo-fuzz target for 20 s).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -16,3 +17,5 @@ step "cargo test"
 cargo test --workspace
 step "scratchwave run (conformance)"
 cargo run --release --quiet -p scratchwave-conformance --bin scratchwave -- run
+step "scripts/fuzz.sh 20 (fuzz smoke: 20 s per target)"
+scripts/fuzz.sh 20

@@ -7,7 +7,7 @@
 
 use crate::error::SpecError;
 use crate::json::{self, Obj};
-use crate::spec::{point64, scratch};
+use crate::spec::{point64, scratch, segment};
 use scratchwave_host::pattern::{
     Count, Distribution, MAX_SEGMENTS, Orientation, PatternError, ProfileChoice, ScratchPattern,
     Shape,
@@ -27,8 +27,23 @@ pub const CSV_HEADER: &str = "x0,y0,x1,y1,width,depth,profile";
 const MAX_SEED: f64 = 9_007_199_254_740_992.0;
 
 /// Reads the array of scratch sources at `path` (e.g. `materials[0].scratches`) into scratch
-/// segments, in source order; files are resolved relative to `base_dir`.
+/// segments, in source order; files are resolved relative to `base_dir`. At most
+/// [`MAX_SEGMENTS`] segments in all (see [`scratch_sources_with_limit`]).
 pub fn scratch_sources(v: &Value, path: &str, base_dir: &Path) -> Result<Vec<Scratch>, SpecError> {
+    scratch_sources_with_limit(v, path, base_dir, MAX_SEGMENTS)
+}
+
+/// [`scratch_sources`] with a caller's segment budget `limit` (at most [`MAX_SEGMENTS`] is
+/// useful; a larger value is clamped to it): a pattern that could exceed what is left of it
+/// is rejected before anything is allocated. A service reading untrusted scenes (or the
+/// fuzzer) passes a small budget so that a 200-byte spec cannot ask for a GiB of segments.
+pub fn scratch_sources_with_limit(
+    v: &Value,
+    path: &str,
+    base_dir: &Path,
+    limit: usize,
+) -> Result<Vec<Scratch>, SpecError> {
+    let limit = limit.min(MAX_SEGMENTS);
     let sources = v
         .as_array()
         .ok_or_else(|| SpecError::field(path, "expected an array of scratch sources"))?;
@@ -42,13 +57,13 @@ pub fn scratch_sources(v: &Value, path: &str, base_dir: &Path) -> Result<Vec<Scr
             let o = Obj::new(s, &p, &["file"])?;
             let n = out.len();
             file(&o, base_dir, &mut out)?;
-            if out.len() > MAX_SEGMENTS {
+            if out.len() > limit {
                 return Err(SpecError::field(
                     o.path_of("file"),
                     format!(
-                        "{} scratches read, more than the {} left of the limit of {MAX_SEGMENTS}",
+                        "{} scratches read, more than the {} left of the limit of {limit}",
                         out.len() - n,
-                        MAX_SEGMENTS - n
+                        limit - n
                     ),
                 ));
             }
@@ -56,7 +71,7 @@ pub fn scratch_sources(v: &Value, path: &str, base_dir: &Path) -> Result<Vec<Scr
             let o = Obj::new(s, &p, &["generate"])?;
             let gp = o.path_of("generate");
             let (mut pattern, seed) = pattern(o.req("generate")?, &gp)?;
-            pattern.max_segments = MAX_SEGMENTS - out.len();
+            pattern.max_segments = limit - out.len();
             let mut rng = SplitMix64::new(seed);
             pattern
                 .for_each_stroke(&mut rng, |st| {
@@ -66,10 +81,10 @@ pub fn scratch_sources(v: &Value, path: &str, base_dir: &Path) -> Result<Vec<Scr
                 })
                 .map_err(|e| pattern_error(e, &gp))?;
         } else {
-            if out.len() >= MAX_SEGMENTS {
+            if out.len() >= limit {
                 return Err(SpecError::field(
                     &p,
-                    format!("more than {MAX_SEGMENTS} scratch segments in all"),
+                    format!("more than {limit} scratch segments in all"),
                 ));
             }
             out.push(scratch(s, &p)?);
@@ -186,13 +201,7 @@ fn csv_row(line: &str) -> Result<Scratch, SpecError> {
             ));
         }
     };
-    Ok(Scratch::from_endpoints(
-        [x[0], x[1]],
-        [x[2], x[3]],
-        width,
-        depth,
-        profile,
-    ))
+    segment([x[0], x[1]], [x[2], x[3]], width, depth, profile, "x1")
 }
 
 /// The `generate` object at `gp` → the pattern (with [`MAX_SEGMENTS`] as its limit) and

@@ -325,7 +325,30 @@ pub(crate) fn scratch(v: &Value, path: &str) -> Result<Scratch, SpecError> {
     let (p0, p1) = (point64(&s, "p0")?, point64(&s, "p1")?);
     let width = json::positive(s.num("width")?, &s.path_of("width"), true)?;
     let depth = json::positive(s.num("depth")?, &s.path_of("depth"), true)?;
-    Ok(Scratch::from_endpoints(p0, p1, width, depth, profile))
+    segment(p0, p1, width, depth, profile, &s.path_of("p1"))
+}
+
+/// `Scratch::from_endpoints`, rejecting (at field `path`) a segment whose half length is
+/// beyond the f32 range: end points within f32 range can be up to 2√2 · 3.4e38 apart, and
+/// an infinite half length would silently make the scratch reflect nothing (found by the
+/// `scratch_sources` fuzz target's invariant check).
+pub(crate) fn segment(
+    p0: [f64; 2],
+    p1: [f64; 2],
+    width: f32,
+    depth: f32,
+    profile: Profile,
+    path: &str,
+) -> Result<Scratch, SpecError> {
+    let s = Scratch::from_endpoints(p0, p1, width, depth, profile);
+    if !s.half_len.is_finite() {
+        let len = (p1[0] - p0[0]).hypot(p1[1] - p0[1]);
+        return Err(SpecError::field(
+            path,
+            format!("segment too long: {len:e} µm, half of it is beyond the f32 range"),
+        ));
+    }
+    Ok(s)
 }
 
 /// A point kept in f64 (scratch end points: see `Scratch::from_endpoints`), finite and

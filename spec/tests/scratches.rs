@@ -547,3 +547,66 @@ fn every_json_example_in_the_docs_is_a_valid_source() {
         assert!(!s.is_empty());
     }
 }
+
+#[test]
+fn a_caller_budget_limits_every_source_kind() {
+    use scratchwave_spec::scratches::scratch_sources_with_limit;
+    let pattern = json!([{"generate": {
+        "seed": 1, "count": 10, "region": {"min": [0, 0], "max": [10, 10]},
+        "shape": {"type": "straight", "length": 5}, "width": 1, "depth": 0.1
+    }}]);
+    let n = |v: &Value, limit| scratch_sources_with_limit(v, "scratches", &data(), limit);
+    assert_eq!(n(&pattern, 10).map(|s| s.len()), Ok(10));
+    let e = n(&pattern, 9).unwrap_err();
+    assert!(
+        matches!(&e, SpecError::Field { field, msg }
+            if field == "scratches[0].generate" && msg.contains("limit of 9")),
+        "{e}"
+    );
+    // A file after an inline scratch: 1 + 2 segments against a budget of 2.
+    let file = json!([
+        {"p0": [0, 0], "p1": [1, 0], "width": 1, "depth": 0.1},
+        {"file": "walls.csv"}
+    ]);
+    assert_eq!(n(&file, 3).map(|s| s.len()), Ok(3));
+    let e = n(&file, 2).unwrap_err();
+    assert!(
+        matches!(&e, SpecError::Field { field, msg }
+            if field == "scratches[1].file" && msg.contains("1 left of the limit of 2")),
+        "{e}"
+    );
+    // Inline scratches: the third one is over a budget of 2.
+    let inline = json!([
+        {"p0": [0, 0], "p1": [1, 0], "width": 1, "depth": 0.1},
+        {"p0": [0, 0], "p1": [1, 0], "width": 1, "depth": 0.1},
+        {"p0": [0, 0], "p1": [1, 0], "width": 1, "depth": 0.1}
+    ]);
+    let e = n(&inline, 2).unwrap_err();
+    assert!(
+        matches!(&e, SpecError::Field { field, .. } if field == "scratches[2]"),
+        "{e}"
+    );
+    // The documented limit is the largest budget: a larger one is clamped to it.
+    assert_eq!(n(&pattern, usize::MAX).map(|s| s.len()), Ok(10));
+}
+
+/// Regression (fuzz target `scratch_sources`): end points within the f32 range but more
+/// than 2·f32::MAX apart gave a scratch with an infinite half length, which reflects
+/// nothing; such segments are now rejected, inline and in files.
+#[test]
+fn segments_longer_than_the_f32_range_are_rejected() {
+    // Minimized fuzz input: [{"p0":[-3e38,-3e38],"p1":[3e38,3e38],"width":1,"depth":1}]
+    rejects(
+        json!([{"p0": [-3e38, -3e38], "p1": [3e38, 3e38], "width": 1, "depth": 1}]),
+        "scratches[0].p1",
+        "segment too long: 8.485",
+    );
+    rejects(
+        json!([{"file": "too_long.csv"}]),
+        "scratches[0].file",
+        "too_long.csv:3: x1: segment too long",
+    );
+    // The longest segment that still fits: half length f32::MAX-ish, finite.
+    let s = read(json!([{"p0": [-3e38, 0], "p1": [3e38, 0], "width": 1, "depth": 1}])).unwrap();
+    assert_eq!(s[0].half_len, 3e38);
+}
