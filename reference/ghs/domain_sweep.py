@@ -32,8 +32,8 @@ Families (files `reference/ghs/golden/sweep/<family>.csv`):
   diffsample the diffraction warp (Eqs. 60-63, arc centred towards the disk centre): o_p from (u0, u1)
 
 Usage:
-  python3 reference/ghs/domain_sweep.py                 # the committed subset (13 300 queries, ~15 min on 2 cores)
-  python3 reference/ghs/domain_sweep.py --full --out DIR  # 104 800 queries (the full sweep; ~2 h on 2 cores)
+  python3 reference/ghs/domain_sweep.py                 # the committed subset (13 300 queries, 16 min on 2 cores)
+  python3 reference/ghs/domain_sweep.py --full --out DIR  # 108 800 queries (the full sweep; 77 min on 2 busy cores)
   python3 reference/ghs/domain_sweep.py --check         # self-checks of the reference only
   GHS_SWEEP_DIR=DIR cargo test --release -p scratchwave-kernel --test ghs_domain_sweep -- --nocapture
 The subset is a prefix of the full sweep (same seeds, rows drawn one after another).
