@@ -20,12 +20,18 @@ fn ratio(num2: f32, den: C32) -> f32 {
 }
 
 /// `Q(wi, wo)` for `η = n + ik`; both directions in the local frame, `z > 0`.
+///
+/// `sinθ = |w_xy|` comes from the components and `R² = η² − sin²θ` is formed as
+/// `(η² − 1) + cos²θ` (as in [`crate::fresnel::fresnel`]): `√(1 − cos²θ)` cancels near normal
+/// incidence, and its mismatch with `w_xy` made `cos²φ + sin²φ ≠ 1`: `Q` was off by up to
+/// 50 % for an f32 direction 2.5e-4 rad from the normal before this form (`docs/ghs.md`).
 pub fn diffraction_color(wi: Vec3, wo: Vec3, n: f32, k: f32) -> f32 {
     let ci = math::clamp(wi.z, 0.0, 1.0);
     let co = math::clamp(wo.z, 0.0, 1.0);
-    let si2 = math::max(1.0 - ci * ci, 0.0);
-    let so2 = math::max(1.0 - co * co, 0.0);
-    let (si, so) = (math::sqrt(si2), math::sqrt(so2));
+    let (si, so) = (
+        math::sqrt(wi.x * wi.x + wi.y * wi.y),
+        math::sqrt(wo.x * wo.x + wo.y * wo.y),
+    );
     // φ = φo − φi − π: cosφ = −cos(φo − φi), sinφ = −sin(φo − φi). At normal incidence or
     // exit φ is undefined but Q does not depend on it there; take φ = 0.
     let sso = si * so;
@@ -37,10 +43,12 @@ pub fn diffraction_color(wi: Vec3, wo: Vec3, n: f32, k: f32) -> f32 {
     } else {
         (1.0, 0.0)
     };
-    let eta2 = C32::new(n * n - k * k, 2.0 * n * k);
-    let e2m1 = (eta2 - C32::new(1.0, 0.0)).norm_sqr();
-    let ri = math::csqrt(eta2 - C32::new(si2, 0.0));
-    let ro = math::csqrt(eta2 - C32::new(so2, 0.0));
+    // η² − 1 = (n − 1)(n + 1) − k² + 2ink without cancellation for n ≈ 1
+    let eta2m1 = C32::new((n - 1.0) * (n + 1.0) - k * k, 2.0 * n * k);
+    let eta2 = eta2m1 + C32::new(1.0, 0.0);
+    let e2m1 = eta2m1.norm_sqr();
+    let ri = math::csqrt(eta2m1 + C32::new(ci * ci, 0.0));
+    let ro = math::csqrt(eta2m1 + C32::new(co * co, 0.0));
     let s_i = C32::new(ci, 0.0) + ri; // cosθi + Ri
     let s_o = C32::new(co, 0.0) + ro;
     let p_i = math::cscale(eta2, ci) + ri; // η² cosθi + Ri

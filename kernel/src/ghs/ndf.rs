@@ -10,6 +10,7 @@
 //! `1/(2p)` — erratum, confirmed by the χ² test of this warp).
 
 use crate::math;
+use glam::Vec3;
 
 /// The NDF's two shape parameters with the normalisation folded into one log constant.
 #[derive(Clone, Copy, Debug)]
@@ -41,21 +42,30 @@ impl GenBeckmann {
         math::exp(self.ln_norm - y)
     }
 
-    /// `D(h)` for a half vector with `cosθh = cos_h` (Eq. 38); 0 for `cos_h ≤ 0`.
+    /// `D(h)` (H&P Eq. 38) for a half vector `h` of any length (≥ 1e-18) with `h_z > 0`; 0
+    /// otherwise.
+    ///
+    /// `tan²θh = |h_xy|²/h_z²` and `1/cos⁴θh = (1 + tan²θh)²` come from the components, never
+    /// from `cosθh`: `(1 − cos²θh)/cos²θh` loses its digits exactly where a narrow lobe lives
+    /// (`cosθh` rounds to 1 for `tanθh` < 2.4e-4). From `cosθh`, β = 0.005, p = 1.7 was off by
+    /// up to 1.8 % against Eq. 38 at the same f32 `h` (2.3e-4 at β = 0.05); from the
+    /// components, 1.3e-5 (`docs/ghs.md`, "Numerical stability"). Scale-invariant, so an
+    /// unnormalised half vector may be passed.
     #[inline]
-    pub fn d(&self, cos_h: f32) -> f32 {
-        if !(cos_h > 0.0) {
+    pub fn d(&self, h: Vec3) -> f32 {
+        if !(h.z > 0.0) {
             return 0.0;
         }
-        let c2 = math::min(cos_h * cos_h, 1.0);
-        let tan2 = (1.0 - c2) / c2;
-        let den = c2 * c2;
+        let tan2 = (h.x * h.x + h.y * h.y) / (h.z * h.z);
         let p22 = self.p22(tan2);
-        // cos⁴θ underflows only for θ within 1e-9 of grazing, where P22 has long vanished
-        if !(p22 > 0.0) || !(den > 0.0) {
+        // tan²θ → ∞ (grazing h) makes P22 = 0 before (1 + tan²θ)² overflows; the finiteness
+        // test catches the rest (an h_z² that underflowed to 0)
+        if !(p22 > 0.0) {
             return 0.0;
         }
-        p22 / den
+        let sec2 = 1.0 + tan2;
+        let v = p22 * sec2 * sec2;
+        if v.is_finite() { v } else { 0.0 }
     }
 
     /// `tanθh` of a sampled microfacet normal for `u ∈ [0, 1)` (upper-tail inverse, so

@@ -55,7 +55,14 @@ pub fn sample_half_vector(ndf: &GenBeckmann, u: Vec2) -> Vec3 {
     let phi = math::TAU * u.x;
     let tan = ndf.sample_tan(u.y);
     let cos = 1.0 / math::sqrt(1.0 + tan * tan);
-    let sin = math::sqrt0(1.0 - cos * cos);
+    // sinθ = tanθ cosθ, not √(1 − cos²θ): that cancels to 0 for narrow lobes (cosθh rounds
+    // to 1 below tanθh = 2.4e-4) and put tanθh off by up to 100 % (`docs/ghs.md`). Beyond
+    // tanθ = 1e18 (u → 0; tan² may overflow) the direction is the horizon.
+    let sin = if tan < 1.0e18 {
+        math::min(tan * cos, 1.0)
+    } else {
+        1.0
+    };
     Vec3::new(sin * math::cos(phi), sin * math::sin(phi), cos)
 }
 
@@ -74,7 +81,7 @@ pub fn half_vector_inverse(ndf: &GenBeckmann, h: Vec3) -> Vec2 {
 /// pdf of a half vector drawn by [`sample_half_vector`]: `D(h) cosθh` (solid angle of `h`).
 #[inline]
 pub fn half_vector_pdf(ndf: &GenBeckmann, h: Vec3) -> f32 {
-    ndf.d(h.z) * math::max(h.z, 0.0)
+    ndf.d(h) * math::max(h.z, 0.0)
 }
 
 /// Micro-facet lobe: `wo = reflect(wi, h)`; `None` below the horizon.
@@ -98,13 +105,21 @@ pub fn microfacet_pdf(ndf: &GenBeckmann, wi: Vec3, wo: Vec3) -> f32 {
     }
 }
 
+/// `sinθi = |i_p|` from the components (at most 1): `√(1 − cos²θi)` cancels near normal
+/// incidence (0 for `cosθi` rounded to 1), which misplaced the lobe centre `−i_p`: sampled
+/// `o_p` were off by up to 1.1 % of their distance from it before this form (`docs/ghs.md`).
+#[inline]
+fn sin_incident(wi: Vec3) -> f32 {
+    math::min(math::sqrt(wi.x * wi.x + wi.y * wi.y), 1.0)
+}
+
 /// Frame of the projected incident direction: unit `e1` along `+i_p`, `e2 ⟂ e1`, and
 /// `s = sinθi`.
 #[inline]
 fn incident_frame(wi: Vec3) -> (Vec2, Vec2, f32) {
     let (c, s_az) = warp::azimuth(wi);
     let e1 = Vec2::new(c, s_az);
-    (e1, Vec2::new(-e1.y, e1.x), math::sqrt0(1.0 - wi.z * wi.z))
+    (e1, Vec2::new(-e1.y, e1.x), sin_incident(wi))
 }
 
 /// Diffraction lobe (Eqs. 60–63, arc centred towards the disk centre); `None` when the
@@ -133,9 +148,9 @@ pub fn diffraction_pdf(spread: &KCorrelation, wi: Vec3, wo: Vec3) -> f32 {
     if !(wo.z > 0.0) {
         return 0.0;
     }
-    let s = math::sqrt0(1.0 - wi.z * wi.z);
-    let (dx, dy) = (wi.x + wo.x, wi.y + wo.y);
-    let r = math::sqrt(dx * dx + dy * dy);
+    let s = sin_incident(wi);
+    let d = crate::ghs::direction_sum(wi, wo);
+    let r = math::sqrt(d.x * d.x + d.y * d.y);
     let pm = phi_max(r, s);
     let m = spread.cdf(1.0 + s);
     if !(pm > 0.0) || !(m > 0.0) {

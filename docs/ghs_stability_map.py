@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""Stability map of the GHS kernel: worst err/bound over (beta, tan theta_h) for D (Eq. 38) and
+the full BRDF, before and after the issue #20 fixes, as docs/ghs-stability.svg.
+
+err is the f32 kernel's relative error against the mpmath reference at the same f32 inputs
+(reference/ghs/domain_sweep.py), bound = max(1e-4, 8 kappa) with kappa the query's
+conditioning; a cell shows the largest err/bound of its queries (> 1 is a defect).
+
+  python3 docs/ghs_stability_map.py                     # runs the sweep test, redraws the chart
+  python3 docs/ghs_stability_map.py --dump FILE         # from a GHS_SWEEP_DUMP file instead
+  python3 docs/ghs_stability_map.py --save-before FILE  # grid the dump of the pre-fix kernel
+                                                        # into docs/ghs-stability-before.csv
+
+The "before" column is docs/ghs-stability-before.csv: the dump of the same test run on the
+kernel before the fixes (commit 969f23e, with D called as d(h.z)), gridded by --save-before.
+Python standard library only.
+"""
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+BEFORE = os.path.join(HERE, "ghs-stability-before.csv")
+SVG = os.path.join(HERE, "ghs-stability.svg")
+
+# grid: log10 beta x log10 tan theta_h
+BX = (-3.0, math.log10(0.5), 11)
+TY = (-6.0, 2.5, 17)
+FAMILIES = [("ndf", "D (Eq. 38)"), ("brdf", "full ρ")]
+
+
+def cell(v, lo, hi, n):
+    i = int((v - lo) / (hi - lo) * n)
+    return min(max(i, 0), n - 1)
+
+
+def grid(rows):
+    """{(family, ix, iy): (max err/bound, count)} from dump rows."""
+    g = {}
+    for r in rows:
+        beta, tan_h = float(r["beta"]), float(r["tan_h"])
+        ratio = float(r["err"]) / float(r["bound"])
+        ix = cell(math.log10(beta), *BX)
+        iy = cell(math.log10(tan_h) if tan_h > 0 else TY[0], *TY)
+        key = (r["family"], ix, iy)
+        m, n = g.get(key, (0.0, 0))
+        g[key] = (max(m, ratio), n + 1)
+    return g
+
+
+def read_dump(path):
+    with open(path) as fh:
+        return list(csv.DictReader(fh))
+
+
+def run_test():
+    fd, path = tempfile.mkstemp(suffix=".csv")
+    os.close(fd)
+    env = dict(os.environ, GHS_SWEEP_DUMP=path)
+    cmd = ["cargo", "test", "--release", "-p", "scratchwave-kernel", "--test", "ghs_domain_sweep",
+           "--", "--nocapture"]
+    r = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
+    sys.stdout.write("\n".join(l for l in r.stdout.splitlines() if l.startswith("|") or "queries" in l) + "\n")
+    if r.returncode != 0:
+        print("note: the sweep test failed (the map shows where)", file=sys.stderr)
+    rows = read_dump(path)
+    os.unlink(path)
+    return rows
+
+
+def save_grid(g, path):
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(["family", "ix", "iy", "max_err_over_bound", "count"])
+        for (fam, ix, iy), (m, n) in sorted(g.items()):
+            w.writerow([fam, ix, iy, "%.4g" % m, n])
+
+
+def load_grid(path):
+    g = {}
+    with open(path) as fh:
+        for r in csv.DictReader(fh):
+            g[(r["family"], int(r["ix"]), int(r["iy"]))] = (float(r["max_err_over_bound"]), int(r["count"]))
+    return g
+
+
+# colour: log10(err/bound) from -3 to +4; <= 0 greens/blues, > 0 oranges/reds
+STOPS = [(-3.0, (33, 102, 172)), (-1.5, (103, 169, 207)), (-0.5, (209, 229, 240)),
+         (0.0, (247, 247, 247)), (0.0001, (253, 219, 199)), (1.0, (244, 165, 130)),
+         (2.0, (214, 96, 77)), (4.0, (103, 0, 31))]
+
+
+def colour(ratio):
+    x = math.log10(max(ratio, 1e-30))
+    x = min(max(x, STOPS[0][0]), STOPS[-1][0])
+    for (x0, c0), (x1, c1) in zip(STOPS[:-1], STOPS[1:]):
+        if x0 <= x <= x1:
+            t = (x - x0) / (x1 - x0) if x1 > x0 else 0
+            return "rgb(%d,%d,%d)" % tuple(round(a + t * (b - a)) for a, b in zip(c0, c1))
+    return "rgb(0,0,0)"
+
+
+def draw(before, after, path):
+    cw, ch = 26, 14
+    pw, ph = BX[2] * cw, TY[2] * ch
+    left, top, gapx, gapy = 70, 50, 80, 70
+    width = left + 2 * pw + gapx + 150
+    height = top + 2 * ph + gapy + 70
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
+           '<rect width="100%" height="100%" fill="white"/>',
+           '<text x="%d" y="18" font-size="13">GHS kernel vs mpmath at the same f32 inputs: worst err / max(1e-4, 8κ) per cell</text>' % left,
+           '<text x="%d" y="34" fill="#555">python3 docs/ghs_stability_map.py (queries: reference/ghs/golden/sweep/{ndf,brdf}.csv)</text>' % left]
+    for row, (fam, label) in enumerate(FAMILIES):
+        for col, (name, g) in enumerate((("before (969f23e)", before), ("after", after))):
+            x0 = left + col * (pw + gapx)
+            y0 = top + row * (ph + gapy) + 14
+            worst = max((v[0] for k, v in g.items() if k[0] == fam), default=0)
+            out.append('<text x="%d" y="%d" font-size="12">%s, %s: worst %.3g</text>' % (x0, y0 - 4, label, name, worst))
+            for ix in range(BX[2]):
+                for iy in range(TY[2]):
+                    v = g.get((fam, ix, iy))
+                    fill = colour(v[0]) if v else "#e6e6e6"
+                    title = "<title>%.3g over %d queries</title>" % v if v else ""
+                    out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="%s" stroke="white" stroke-width="0.5">%s</rect>'
+                               % (x0 + ix * cw, y0 + (TY[2] - 1 - iy) * ch, cw, ch, fill, title))
+            # axes
+            for e in range(-3, 1):
+                x = x0 + (e - BX[0]) / (BX[1] - BX[0]) * pw
+                if x <= x0 + pw:
+                    out.append('<text x="%.1f" y="%d" text-anchor="middle">1e%d</text>' % (x, y0 + ph + 13, e))
+            out.append('<text x="%.1f" y="%d" text-anchor="middle">β</text>' % (x0 + pw / 2, y0 + ph + 27))
+            for e in range(-6, 3, 2):
+                y = y0 + ph - (e - TY[0]) / (TY[1] - TY[0]) * ph
+                out.append('<text x="%d" y="%.1f" text-anchor="end" dominant-baseline="middle">1e%d</text>' % (x0 - 4, y, e))
+            out.append('<text x="%d" y="%.1f" text-anchor="middle" transform="rotate(-90 %d %.1f)">tan θh</text>'
+                       % (x0 - 40, y0 + ph / 2, x0 - 40, y0 + ph / 2))
+    # colour bar
+    bx, by, bh = left + 2 * pw + gapx + 30, top + 14, 2 * ph + gapy - 20
+    n = 70
+    for i in range(n):
+        x = STOPS[0][0] + (STOPS[-1][0] - STOPS[0][0]) * (i + 0.5) / n
+        out.append('<rect x="%d" y="%.2f" width="16" height="%.2f" fill="%s"/>' % (bx, by + bh - (i + 1) * bh / n, bh / n + 0.3, colour(10 ** x)))
+    for e in range(-3, 5):
+        y = by + bh - (e - STOPS[0][0]) / (STOPS[-1][0] - STOPS[0][0]) * bh
+        out.append('<text x="%d" y="%.1f" dominant-baseline="middle">%s</text>' % (bx + 20, y, "1 (bound)" if e == 0 else "1e%d" % e))
+    out.append('<text x="%d" y="%d">err/bound</text>' % (bx - 4, by - 14))
+    out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; tan θh = 0 is drawn in the lowest row</text>' % (left, height - 12))
+    out.append("</svg>")
+    with open(path, "w") as fh:
+        fh.write("\n".join(out) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--dump", help="a GHS_SWEEP_DUMP file of the current kernel (skips cargo)")
+    ap.add_argument("--save-before", metavar="DUMP", help="grid this dump into " + BEFORE + " and exit")
+    a = ap.parse_args()
+    if a.save_before:
+        save_grid(grid(read_dump(a.save_before)), BEFORE)
+        print("wrote", BEFORE)
+        return
+    rows = read_dump(a.dump) if a.dump else run_test()
+    after = grid(rows)
+    draw(load_grid(BEFORE), after, SVG)
+    for fam, label in FAMILIES:
+        w = max((v[0] for k, v in after.items() if k[0] == fam), default=0)
+        print("%s: worst err/bound %.3g" % (label, w))
+    print("wrote", SVG)
+
+
+if __name__ == "__main__":
+    main()
