@@ -5,6 +5,12 @@
 //! light), at zoom 0.5×/1×/2× (field of view), antialiasing off (`footprint: none`) and on
 //! (`footprint: ellipse`, Velinov's camera-footprint integration), on 1 and 2 threads.
 //!
+//! Caveat: the renderer applies the footprint to point and directional lights only; under
+//! area lights it shades the footprint centre (`docs/render.md`), so today the AA-on rows
+//! measure the same work as AA off. With point sampling the scratch highlights of this scene
+//! are sparse (a pixel covers ~190 µm at 1×, the 6σ window 120 µm), so the frame is mostly
+//! black apart from the base's mirror highlight.
+//!
 //! `cargo run --release -p scratchwave-benches --example velinov_table2 [-- REPEATS]`
 //!
 //! Prints one Markdown table: ms/frame (tile loop, median of the repeats) per row and the
