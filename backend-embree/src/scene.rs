@@ -583,4 +583,18 @@ impl RayQueries for Scene {
     fn closest_hits(&self, rays: &[Ray], hits: &mut [Option<Hit>], coherence: Coherence) {
         self.intersect_many(rays, hits, 16, coherence);
     }
+
+    /// Coherent rays in packets of 16 (`rtcOccluded16`), incoherent ones one by one.
+    fn occluded_many(&self, rays: &[Ray], out: &mut [bool], coherence: Coherence) {
+        assert_eq!(rays.len(), out.len(), "one answer slot per ray");
+        if coherence == Coherence::Coherent {
+            for (rays, out) in rays.chunks(16).zip(out.chunks_mut(16)) {
+                self.occluded_packet::<ffi::RTCRayHit16>(rays, out, coherence);
+            }
+        } else {
+            for (ray, o) in rays.iter().zip(out.iter_mut()) {
+                *o = Scene::occluded(self, ray);
+            }
+        }
+    }
 }

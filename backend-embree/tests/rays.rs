@@ -245,6 +245,13 @@ fn check(
             "{what}: portable occluded, shadow ray {i}"
         );
     }
+    // The trait's batch call, with a length that leaves a partial last packet.
+    let n = shadow.len() - shadow.len().min(5);
+    for c in [Coherence::Coherent, Coherence::Incoherent] {
+        let mut got = vec![false; n];
+        RayQueries::occluded_many(&scene, &shadow[..n], &mut got, c);
+        assert_eq!(got[..], occluded[..n], "{what}: occluded_many ({c:?})");
+    }
     for (k, chunk) in shadow.chunks_exact(16).enumerate() {
         let rays16: &[Ray; 16] = chunk.try_into().expect("16 rays");
         let got16 = scene.occluded16(rays16, coherence);

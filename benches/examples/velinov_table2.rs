@@ -5,13 +5,12 @@
 //! light), at zoom 0.5×/1×/2× (field of view), antialiasing off (`footprint: none`) and on
 //! (`footprint: ellipse`, Velinov's camera-footprint integration), on 1 and 2 threads.
 //!
-//! Caveat: the renderer applies the footprint to point and directional lights only; under
-//! area lights it shades the footprint centre (`docs/render.md`), so today the AA-on rows
-//! measure the same work as AA off. With point sampling the scratch highlights of this scene
-//! are sparse (a pixel covers ~190 µm at 1×, the 6σ window 120 µm), so the frame is mostly
-//! black apart from the base's mirror highlight.
+//! Shadow rays are adaptive (`render.shadows: "adaptive"`, the default): 4 probe rays per
+//! sphere light and 3 per star triangle, the other quadrature nodes only in penumbrae.
+//! Velinov's renderer rasterises primary visibility and casts no shadow rays at all.
 //!
-//! `cargo run --release -p scratchwave-benches --example velinov_table2 [-- REPEATS]`
+//! `cargo run --release -p scratchwave-benches --example velinov_table2 [-- REPEATS [sphere|star]]`
+//! (the optional second argument runs one light's rows only)
 //!
 //! Prints one Markdown table: ms/frame (tile loop, median of the repeats) per row and the
 //! share of that time spent in ray queries (Embree closest-hit and occlusion calls, timed
@@ -93,6 +92,7 @@ fn star(c: [f64; 3], outer: f64) -> Value {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let repeats: usize = std::env::args().nth(1).map_or(Ok(1), |s| s.parse())?;
+    let only = std::env::args().nth(2);
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/velinov_table2.json");
     let base: Value = serde_json::from_str(&std::fs::read_to_string(&file)?)?;
     let fov0 = base["camera"]["fov_y_deg"].as_f64().unwrap_or(22.0);
@@ -107,6 +107,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!("|---|---|---|---|---|---|---|---|---|");
     for (light_name, light) in &lights {
+        if only.as_deref().is_some_and(|o| o != *light_name) {
+            continue;
+        }
         for aa in [false, true] {
             for zoom in [0.5f64, 1.0, 2.0] {
                 let mut v = base.clone();

@@ -41,6 +41,21 @@ pub trait RayQueries: Sync {
             *hit = self.closest_hit(ray);
         }
     }
+
+    /// Occlusion of many rays; `out[i]` answers `rays[i]`. With [`Coherence::Coherent`]
+    /// implementations may trace groups of consecutive rays together (Embree packets), so
+    /// pass rays with similar origins and directions next to each other (shadow rays of
+    /// neighbouring pixels towards one light).
+    ///
+    /// # Panics
+    /// If `rays` and `out` differ in length.
+    fn occluded_many(&self, rays: &[Ray], out: &mut [bool], coherence: Coherence) {
+        let _ = coherence;
+        assert_eq!(rays.len(), out.len(), "one answer slot per ray");
+        for (ray, o) in rays.iter().zip(out.iter_mut()) {
+            *o = self.occluded(ray);
+        }
+    }
 }
 
 /// "Every scratch segment within `radius` of the point `p`" in the tangent plane.

@@ -1,5 +1,5 @@
 //! Times a scene on both ray backends: `cargo run --release -p scratchwave-render --example
-//! render_timing -- SCENE.json [REPEATS]`. Prints ms per frame (median of the repeats, tile
+//! render_timing -- SCENE.json [REPEATS [cpu|embree]]`. Prints ms per frame (median of the repeats, tile
 //! loop only), Mrays/s (primary + shadow) and shading evaluations per backend.
 
 use scratchwave_render::{Backend, render_scene, scene_file};
@@ -8,7 +8,7 @@ use std::path::Path;
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let Some(file) = args.first() else {
-        eprintln!("usage: render_timing SCENE.json [REPEATS]");
+        eprintln!("usage: render_timing SCENE.json [REPEATS [cpu|embree]]");
         std::process::exit(2);
     };
     let repeats: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(5);
@@ -22,6 +22,9 @@ fn main() {
     println!("| backend | ms/frame (median of {repeats}) | Mrays/s | shading evaluations |");
     println!("|---|---|---|---|");
     for backend in [Backend::Cpu, Backend::Embree] {
+        if args.get(2).is_some_and(|b| b != backend.name()) {
+            continue;
+        }
         let mut runs = Vec::new();
         for _ in 0..repeats {
             match render_scene(&scene, backend, &|_, _| {}) {

@@ -3,13 +3,14 @@
 //! only ([`scratchwave_kernel::render`]).
 
 use crate::prepare::Prepared;
-use crate::scene::Footprint;
+use crate::scene::{Footprint, Shadows};
 use crate::scene::Scene;
 use rayon::prelude::*;
 use scratchwave_host::{Coherence, RayQueries};
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::glam::Vec3;
-use scratchwave_kernel::ray::Hit;
+use scratchwave_kernel::lights::MAX_LAMBDAS;
+use scratchwave_kernel::ray::{Hit, Ray};
 use scratchwave_kernel::render::area::{self, SceneLight, SceneLightKind};
 use scratchwave_kernel::render::camera::Camera;
 use scratchwave_kernel::render::camera::RayDifferential;
@@ -169,24 +170,59 @@ fn render_tile<Q: RayQueries + ?Sized>(
     } else {
         1.0
     };
+    let shadows = scene.settings.shadows;
+    // Phase 1: the shading point of every hit and the first shadow rays of every light
+    // (delta lights: their one ray; area lights: their probes), in (sample, light) order.
+    let mut points: Vec<Option<HitPoint>> = Vec::with_capacity(rays.len());
+    let mut first: Vec<Ray> = Vec::new();
+    let mut slots: Vec<(u32, u32)> = Vec::new();
+    for (idx, hit) in hits.iter().enumerate() {
+        let point = hit
+            .as_ref()
+            .and_then(|h| hit_point(prep, &diffs[idx], footprint_scale, h));
+        if let Some(hp) = &point {
+            for light in &prep.lights {
+                let start = first.len() as u32;
+                first_rays(hp, light, shadows, &mut first);
+                slots.push((start, first.len() as u32 - start));
+            }
+        }
+        points.push(point);
+    }
+    // Phase 2: all of them at once (Embree traces neighbouring pixels' rays towards one
+    // light as packets).
+    let mut blocked = vec![false; first.len()];
+    queries.occluded_many(&first, &mut blocked, Coherence::Coherent);
+    let mut shadow_rays = first.len() as u64;
+    // Phase 3: shading, in the same order.
     let mut shading_evals = 0u64;
-    let mut shadow_rays = 0u64;
     let mut out = Vec::with_capacity(pixels.len());
+    let mut slot = 0usize;
+    let lambda = |k: u32| spectrum::wavelength_nm(spec.mode, k, spec.samples, spec.lambda_nm);
+    let ctx = Ctx {
+        prep,
+        shadows,
+        mode: spec.mode,
+        n_lambda,
+        lambda: &lambda,
+    };
     for (p, _) in pixels.iter().enumerate() {
         let mut acc = [0.0f32; 3];
         for k in 0..spp as usize {
             let idx = p * spp as usize + k;
-            if let Some(hit) = hits[idx] {
-                shade_hit(
-                    prep,
+            let Some(hp) = &points[idx] else {
+                continue;
+            };
+            for light in &prep.lights {
+                let (start, count) = slots[slot];
+                slot += 1;
+                let first_blocked = &blocked[start as usize..(start + count) as usize];
+                shade_light(
+                    &ctx,
                     queries,
-                    &diffs[idx],
-                    footprint_scale,
-                    &hit,
-                    spec.mode,
-                    n_lambda,
-                    spec.samples,
-                    spec.lambda_nm,
+                    hp,
+                    light,
+                    first_blocked,
                     &mut acc,
                     &mut shading_evals,
                     &mut shadow_rays,
@@ -202,29 +238,33 @@ fn render_tile<Q: RayQueries + ?Sized>(
     out
 }
 
-/// Shades one hit into the spectral accumulator `acc`.
-#[allow(clippy::too_many_arguments)]
-fn shade_hit<Q: RayQueries + ?Sized>(
+/// What shading one light at one hit needs besides the light.
+struct Ctx<'a> {
+    prep: &'a Prepared,
+    shadows: Shadows,
+    mode: SpectrumMode,
+    n_lambda: u32,
+    lambda: &'a dyn Fn(u32) -> f32,
+}
+
+/// A hit seen from the camera, ready to shade.
+struct HitPoint {
+    sp: SurfacePoint,
+    wo: Vec3,
+    ng: Vec3,
+    fp: Ellipse,
+    material: usize,
+}
+
+/// The shading point of a primary hit; `None` for a back-facing or unknown primitive.
+fn hit_point(
     prep: &Prepared,
-    queries: &Q,
     rd: &RayDifferential,
     footprint_scale: f32,
     hit: &Hit,
-    mode: SpectrumMode,
-    n_lambda: u32,
-    samples: u32,
-    single_nm: f32,
-    acc: &mut [f32; 3],
-    shading_evals: &mut u64,
-    shadow_rays: &mut u64,
-) {
-    let Some(&object) = prep.prim_object.get(hit.prim_id as usize) else {
-        return;
-    };
+) -> Option<HitPoint> {
+    let &object = prep.prim_object.get(hit.prim_id as usize)?;
     let surface = &prep.surfaces[object as usize];
-    let mi = surface.material as usize;
-    let m: &ShadeMaterial = &prep.materials[mi];
-    let set = prep.lookups[mi].set();
     let ray = &rd.ray;
     let p = hit_position(ray.origin, ray.dir, hit.t);
     let sp: SurfacePoint = if SurfaceKind::from_u32(surface.kind) == SurfaceKind::Mesh {
@@ -242,68 +282,128 @@ fn shade_hit<Q: RayQueries + ?Sized>(
     };
     let wo = sp.to_local(-Vec3::from_array(ray.dir).normalize_or_zero());
     if !(wo.z > 0.0) {
-        return;
+        return None;
     }
-    let ng = Vec3::from_array(hit.ng);
     let fp = if footprint_scale > 0.0 {
         footprint_ellipse(rd, hit.t, &sp, footprint_scale)
     } else {
         Ellipse::default()
     };
-    let lambda = |k: u32| spectrum::wavelength_nm(mode, k, samples, single_nm);
-    for light in &prep.lights {
-        let kind = SceneLightKind::from_u32(light.kind);
-        if matches!(kind, SceneLightKind::Point | SceneLightKind::Directional) {
-            let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
-            let (dir, dist) = if kind == SceneLightKind::Directional {
-                (p0.normalize_or_zero(), f32::INFINITY)
-            } else {
-                let d = p0 - sp.position;
-                let l = d.length();
-                (d / l, l)
-            };
-            if !(sp.to_local(dir).z > 0.0) {
-                continue;
+    Some(HitPoint {
+        sp,
+        wo,
+        ng: Vec3::from_array(hit.ng),
+        fp,
+        material: surface.material as usize,
+    })
+}
+
+/// Unit direction towards a point or directional light and the shadow ray's extent.
+fn delta_direction(light: &SceneLight, sp: &SurfacePoint) -> (Vec3, f32) {
+    let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
+    if SceneLightKind::from_u32(light.kind) == SceneLightKind::Directional {
+        (p0.normalize_or_zero(), f32::INFINITY)
+    } else {
+        let d = p0 - sp.position;
+        let l = d.length();
+        (d / l, l)
+    }
+}
+
+/// Whether `light` is a point or directional light.
+fn is_delta(light: &SceneLight) -> bool {
+    matches!(
+        SceneLightKind::from_u32(light.kind),
+        SceneLightKind::Point | SceneLightKind::Directional
+    )
+}
+
+/// Appends the shadow rays `light` needs first at `hp`: a delta light's one ray (if above
+/// the horizon); an area light's probes above the horizon (adaptive shadows only).
+fn first_rays(hp: &HitPoint, light: &SceneLight, shadows: Shadows, out: &mut Vec<Ray>) {
+    let sp = &hp.sp;
+    if is_delta(light) {
+        let (dir, dist) = delta_direction(light, sp);
+        if sp.to_local(dir).z > 0.0 {
+            out.push(shading::shadow_ray(sp.position, hp.ng, dir, dist));
+        }
+    } else if shadows == Shadows::Adaptive && !area::below_horizon(light, sp.position, sp.z) {
+        for node in area::probe_nodes(light, sp.position).iter().flatten() {
+            if sp.to_local(node.dir).z > 0.0 {
+                out.push(shading::shadow_ray(sp.position, hp.ng, node.dir, node.dist));
             }
-            *shadow_rays += 1;
-            if queries.occluded(&shading::shadow_ray(sp.position, ng, dir, dist)) {
-                continue;
-            }
-            for k in 0..n_lambda {
-                let l = shading::delta_light(m, &sp, wo, light, lambda(k), &set, &fp);
-                *shading_evals += 1;
-                spectrum::accumulate(mode, k, lambda(k), l, acc);
-            }
-        } else {
-            area_light(
-                m,
-                &sp,
-                wo,
-                ng,
-                light,
-                queries,
-                mode,
-                n_lambda,
-                &lambda,
-                &set,
-                acc,
-                shading_evals,
-                shadow_rays,
-            );
         }
     }
 }
 
-/// A sphere or triangle light: shadow rays to its quadrature nodes, then the closed form
-/// (velinov) scaled by the visible fraction, or the quadrature over the visible nodes.
+/// Shades one light at one hit into the spectral accumulator `acc`, given the answers to
+/// its first shadow rays ([`first_rays`]).
+#[allow(clippy::too_many_arguments)]
+fn shade_light<Q: RayQueries + ?Sized>(
+    ctx: &Ctx,
+    queries: &Q,
+    hp: &HitPoint,
+    light: &SceneLight,
+    first_blocked: &[bool],
+    acc: &mut [f32; 3],
+    shading_evals: &mut u64,
+    shadow_rays: &mut u64,
+) {
+    let m: &ShadeMaterial = &ctx.prep.materials[hp.material];
+    let set = ctx.prep.lookups[hp.material].set();
+    if is_delta(light) {
+        // No ray (below the horizon) or a blocked one: nothing arrives.
+        if first_blocked != [false] {
+            return;
+        }
+        for k in 0..ctx.n_lambda {
+            let lam = (ctx.lambda)(k);
+            let l = shading::delta_light(m, &hp.sp, hp.wo, light, lam, &set, &hp.fp);
+            *shading_evals += 1;
+            spectrum::accumulate(ctx.mode, k, lam, l, acc);
+        }
+        return;
+    }
+    let consensus = if ctx.shadows == Shadows::Adaptive {
+        if area::below_horizon(light, hp.sp.position, hp.sp.z) {
+            return;
+        }
+        let lit = first_blocked.iter().filter(|&&b| !b).count();
+        if !first_blocked.is_empty() && (lit == 0 || lit == first_blocked.len()) {
+            Some(lit > 0)
+        } else {
+            None
+        }
+    } else {
+        None
+    };
+    area_light(
+        m,
+        hp,
+        light,
+        queries,
+        consensus,
+        ctx.mode,
+        ctx.n_lambda,
+        ctx.lambda,
+        &set,
+        acc,
+        shading_evals,
+        shadow_rays,
+    );
+}
+
+/// A sphere or triangle light: the visible fraction from `consensus` (its probes agreed:
+/// wholly visible or hidden) or, without one, from a shadow ray to every quadrature node;
+/// then the closed form (velinov) scaled by the visible fraction, or the quadrature over the
+/// visible nodes.
 #[allow(clippy::too_many_arguments)]
 fn area_light<Q: RayQueries + ?Sized, S: scratchwave_kernel::scratch::ScratchSet>(
     m: &ShadeMaterial,
-    sp: &SurfacePoint,
-    wo: Vec3,
-    ng: Vec3,
+    hp: &HitPoint,
     light: &SceneLight,
     queries: &Q,
+    consensus: Option<bool>,
     mode: SpectrumMode,
     n_lambda: u32,
     lambda: &dyn Fn(u32) -> f32,
@@ -312,41 +412,70 @@ fn area_light<Q: RayQueries + ?Sized, S: scratchwave_kernel::scratch::ScratchSet
     shading_evals: &mut u64,
     shadow_rays: &mut u64,
 ) {
+    let (sp, wo, fp) = (&hp.sp, hp.wo, &hp.fp);
+    let occluded = |node: &area::AreaNode, rays: &mut u64| {
+        *rays += 1;
+        queries.occluded(&shading::shadow_ray(sp.position, hp.ng, node.dir, node.dist))
+    };
+    let nodes = shading::needs_area_nodes(m);
+    if consensus == Some(false) {
+        return;
+    }
     let mut visible = [None; area::MAX_NODES as usize];
-    let (mut w_vis, mut w_all) = (0.0f32, 0.0f32);
-    for i in 0..area::node_count(light) {
-        let Some(node) = area::area_node(light, sp.position, i) else {
-            continue;
-        };
-        if !(sp.to_local(node.dir).z > 0.0) {
-            continue;
-        }
-        w_all += node.weight;
-        *shadow_rays += 1;
-        if !queries.occluded(&shading::shadow_ray(sp.position, ng, node.dir, node.dist)) {
-            w_vis += node.weight;
-            visible[i as usize] = Some(node);
+    let (mut w_vis, mut w_all) = (1.0f32, 1.0f32);
+    if consensus.is_none() || nodes {
+        (w_vis, w_all) = (0.0, 0.0);
+        for i in 0..area::node_count(light) {
+            let Some(node) = area::area_node(light, sp.position, i) else {
+                continue;
+            };
+            if !(sp.to_local(node.dir).z > 0.0) {
+                continue;
+            }
+            w_all += node.weight;
+            let lit = match consensus {
+                Some(lit) => lit,
+                None => !occluded(&node, shadow_rays),
+            };
+            if lit {
+                w_vis += node.weight;
+                visible[i as usize] = Some(node);
+            }
         }
     }
     if !(w_vis > 0.0) {
         return;
     }
     let closed = shading::closed_form_area(m);
-    for k in 0..n_lambda {
-        let lam = lambda(k);
-        let mut l = 0.0;
-        if closed {
-            l += shading::velinov_area_light(m, sp, wo, light, lam, set) * (w_vis / w_all);
-            *shading_evals += 1;
+    let scale = w_vis / w_all;
+    // Wavelengths in groups of MAX_LAMBDAS: one scratch walk per group.
+    let mut k0 = 0;
+    while k0 < n_lambda {
+        let count = (n_lambda - k0).min(MAX_LAMBDAS as u32) as usize;
+        let mut lams = [0.0f32; MAX_LAMBDAS];
+        for (j, l) in lams.iter_mut().enumerate().take(count) {
+            *l = lambda(k0 + j as u32);
         }
-        for node in visible.iter().flatten() {
-            l += if closed {
-                shading::base_node_radiance(m, sp, wo, node, light.emission, lam, set)
-            } else {
-                shading::area_node_radiance(m, sp, wo, node, light.emission, lam, set)
-            };
-            *shading_evals += 1;
+        let closed_l = if closed {
+            *shading_evals += count as u64;
+            shading::velinov_area_light(m, sp, wo, light, &lams, count, set, fp)
+        } else {
+            [0.0; MAX_LAMBDAS]
+        };
+        for (j, &lam) in lams.iter().enumerate().take(count) {
+            let mut l = closed_l[j] * scale;
+            if nodes {
+                for node in visible.iter().flatten() {
+                    l += if closed {
+                        shading::base_node_radiance(m, sp, wo, node, light.emission, lam, set)
+                    } else {
+                        shading::area_node_radiance(m, sp, wo, node, light.emission, lam, set)
+                    };
+                    *shading_evals += 1;
+                }
+            }
+            spectrum::accumulate(mode, k0 + j as u32, lam, l, acc);
         }
-        spectrum::accumulate(mode, k, lam, l, acc);
+        k0 += count as u32;
     }
 }

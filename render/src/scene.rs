@@ -153,6 +153,16 @@ pub enum Footprint {
     Ellipse,
 }
 
+/// Shadow rays towards area lights.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shadows {
+    /// The light's probe nodes first (`kernel::render::area::probe_count`); the other
+    /// nodes are traced only where the probes disagree (penumbrae).
+    Adaptive,
+    /// A shadow ray to every quadrature node.
+    AllNodes,
+}
+
 /// Sampling settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -160,4 +170,6 @@ pub struct RenderSettings {
     pub spp: u32,
     /// Footprint mode.
     pub footprint: Footprint,
+    /// Shadow rays towards area lights.
+    pub shadows: Shadows,
 }

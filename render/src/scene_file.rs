@@ -3,7 +3,7 @@
 
 use crate::prepare::{estimate_bytes, triangulate};
 use crate::scene::{
-    DEFAULT_UNIT_UM, Footprint, LightDef, Object, RenderSettings, Scene, SceneMaterial, Shape,
+    DEFAULT_UNIT_UM, Footprint, LightDef, Object, RenderSettings, Scene, SceneMaterial, Shadows, Shape,
     Spectrum,
 };
 use scratchwave_kernel::material::Material;
@@ -701,13 +701,22 @@ fn settings(v: Option<&Value>) -> Result<RenderSettings, SpecError> {
         return Ok(RenderSettings {
             spp: 1,
             footprint: Footprint::None,
+            shadows: Shadows::Adaptive,
         });
     };
-    let o = Obj::new(v, "render", &["spp", "footprint"])?;
+    let o = Obj::new(v, "render", &["spp", "footprint", "shadows"])?;
     let spp = int(&o, "spp", 1, MAX_SPP, 1)? as u32;
     let footprint = match o.opt_choice("footprint", &["none", "ellipse"])? {
         Some("ellipse") => Footprint::Ellipse,
         _ => Footprint::None,
     };
-    Ok(RenderSettings { spp, footprint })
+    let shadows = match o.opt_choice("shadows", &["adaptive", "all_nodes"])? {
+        Some("all_nodes") => Shadows::AllNodes,
+        _ => Shadows::Adaptive,
+    };
+    Ok(RenderSettings {
+        spp,
+        footprint,
+        shadows,
+    })
 }

@@ -25,6 +25,7 @@ use super::limits::MAX_BREAKPOINTS;
 use super::limits::MAX_VERTICES;
 use super::polygon::SphericalPolygon;
 use super::sphere::{Cone, SphereCap};
+use crate::footprint::{Ellipse, eta_p_accurate};
 use crate::material::Material;
 use crate::math;
 use crate::math::quadrature::{GL4_W, GL4_X, GL8_W, GL8_X};
@@ -519,7 +520,9 @@ fn extent_power(
     sum
 }
 
-/// One scratch's `∫ |S_k|² dξ₁ dξ₂` over the lit band (µm²).
+/// One scratch's `∫ |S_k|² dξ₁ dξ₂` over the lit band (µm²) at the point `x0`:
+/// [`band_power`] times [`along_power`].
+#[allow(clippy::too_many_arguments)]
 pub fn scratch_band_power(
     region: &LightRegion,
     scratch: &Scratch,
@@ -535,6 +538,34 @@ pub fn scratch_band_power(
     let Some(frame) = scratch.frame() else {
         return 0.0;
     };
+    band_power(
+        region,
+        scratch,
+        &frame,
+        wo,
+        sigma,
+        depth_half_turns_per_um,
+        lambda,
+        si,
+        rule,
+    ) * along_power(eta, &frame, x0, sigma)
+}
+
+/// One scratch's band integral without its spatial factor: `∫ |M − P|² dξ₂` over the lit
+/// band, weighted across ξ₁ by the normalised Gaussian `e^{−4π²σ²ξ₁²}` of the infinite
+/// scratch (by `rule`), in 1/µm · µm² (multiply by `∫|η|² dξ₁`, µm, for µm²).
+#[allow(clippy::too_many_arguments)]
+pub fn band_power(
+    region: &LightRegion,
+    scratch: &Scratch,
+    frame: &SegmentFrame,
+    wo: Vec3,
+    sigma: f32,
+    depth_half_turns_per_um: f32,
+    lambda: f32,
+    si: SiMode,
+    rule: BandRule,
+) -> f32 {
     let across = Across {
         profile: Profile::from_u32(scratch.profile),
         width: scratch.width,
@@ -545,42 +576,167 @@ pub fn scratch_band_power(
     };
     // Standard deviation of the band in direction cosines: λ/(2√2 πσ).
     let sd = lambda / (2.0 * math::SQRT_2 * math::PI * sigma);
-    let sum = if rule == BandRule::Extent {
-        extent_power(region, &frame, wo, &across, sd)
+    if rule == BandRule::Extent {
+        extent_power(region, frame, wo, &across, sd)
     } else {
-        fixed_rule_power(rule, region, &frame, wo, &across, sd)
-    };
-    sum * along_power(eta, &frame, x0, sigma)
+        fixed_rule_power(rule, region, frame, wo, &across, sd)
+    }
 }
 
 /// `∫_light f_r cos θi dωi` (unit radiance) for the incoherent model summed over the
 /// scratches near `x`: finite, ≥ 0 for every input (0 for degenerate lights, views or
 /// lights below the horizon).
 pub fn light_integral<S: ScratchSet>(params: &LightParams, q: &LightQuery, set: &S) -> f32 {
-    let wo = Vec3::from_array(q.wo).normalize_or_zero();
-    let sigma = params.sigma_um;
-    let lambda = crate::units::um_from_nm(q.lambda_nm);
-    if !(wo.z > 0.0 && sigma > 0.0 && lambda > 0.0 && sigma.is_finite() && lambda.is_finite()) {
-        return 0.0;
+    light_integral_footprint(params, q, &Ellipse::default(), set)
+}
+
+/// [`light_integral`] averaged over the pixel footprint `fp` (Velinov §4 combined with
+/// Eq. 27; `fp.a1 = 0` is the point model at `q.x`): [`light_integrals`] at `q.lambda_nm`.
+pub fn light_integral_footprint<S: ScratchSet>(
+    params: &LightParams,
+    q: &LightQuery,
+    fp: &Ellipse,
+    set: &S,
+) -> f32 {
+    let lambdas = [q.lambda_nm, 0.0, 0.0, 0.0];
+    light_integrals(params, q, &lambdas, 1, fp, set)[0]
+}
+
+/// Most wavelengths one [`light_integrals`] call evaluates.
+pub const MAX_LAMBDAS: usize = 4;
+
+/// [`light_integral`] at the first `count` (≤ [`MAX_LAMBDAS`]) of `lambdas_nm`
+/// (`q.lambda_nm` is not read) in one walk of the scratch set, optionally averaged over
+/// the pixel footprint `fp`; each wavelength's value is bitwise the one a call for it alone
+/// returns. Entries past `count`, and those of non-positive or non-finite wavelengths, are 0.
+///
+/// Footprint (Velinov §4 combined with Eq. 27): with `fp.a1, fp.a2 > 0` each scratch's
+/// spatial factor `∫|η|² dξ₁` becomes its footprint average, which under the
+/// infinite-scratch separation `|η(ξ₁)|² = e^{−4π²σ²ξ₁²} |η(0)|²` is `η_P / (2√π σ)` with
+/// `η_P = (1/A_P) ∫_P |η_s(x)|² dx` ([`eta_p_accurate`]); scratches within
+/// `max(a1, a2) + 6σ` of the footprint centre contribute. `fp.center` is not read: the
+/// footprint is centred on `q.x`. `fp.a1 = 0` is the point model at `q.x`.
+pub fn light_integrals<S: ScratchSet>(
+    params: &LightParams,
+    q: &LightQuery,
+    lambdas_nm: &[f32; MAX_LAMBDAS],
+    count: usize,
+    fp: &Ellipse,
+    set: &S,
+) -> [f32; MAX_LAMBDAS] {
+    match LightRegion::new(&q.light) {
+        Some(region) => light_integrals_in(
+            params,
+            &region,
+            q.wo,
+            q.x,
+            &q.material,
+            lambdas_nm,
+            count,
+            fp,
+            set,
+        ),
+        None => [0.0; MAX_LAMBDAS],
     }
-    let Some(region) = LightRegion::new(&q.light) else {
-        return 0.0;
+}
+
+/// [`light_integrals`] for a light already turned into its [`LightRegion`] (a caller that
+/// also needs the region builds it once), with the query's fields passed apart.
+#[allow(clippy::too_many_arguments)]
+pub fn light_integrals_in<S: ScratchSet>(
+    params: &LightParams,
+    region: &LightRegion,
+    wo: [f32; 3],
+    x: [f32; 2],
+    material: &Material,
+    lambdas_nm: &[f32; MAX_LAMBDAS],
+    count: usize,
+    fp: &Ellipse,
+    set: &S,
+) -> [f32; MAX_LAMBDAS] {
+    let mut out = [0.0f32; MAX_LAMBDAS];
+    let n = if count < MAX_LAMBDAS {
+        count
+    } else {
+        MAX_LAMBDAS
     };
+    let wo = Vec3::from_array(wo).normalize_or_zero();
+    let sigma = params.sigma_um;
+    if !(wo.z > 0.0 && sigma > 0.0 && sigma.is_finite()) {
+        return out;
+    }
     let wc = region.center();
     let gamma = DepthTerm::from_u32(params.depth_term).gamma(wc.z + wo.z);
-    let half_turns = crate::units::depth_half_turns_per_um(gamma, q.lambda_nm);
+    // Per wavelength: λ in µm (0 marks one skipped) and the depth phase.
+    let mut lambda = [0.0f32; MAX_LAMBDAS];
+    let mut half_turns = [0.0f32; MAX_LAMBDAS];
+    let mut any = false;
+    let mut k = 0;
+    while k < n && k < MAX_LAMBDAS {
+        let l = crate::units::um_from_nm(lambdas_nm[k]);
+        if l > 0.0 && l.is_finite() {
+            lambda[k] = l;
+            half_turns[k] = crate::units::depth_half_turns_per_um(gamma, lambdas_nm[k]);
+            any = true;
+        }
+        k += 1;
+    }
+    if !any {
+        return out;
+    }
     let eta = EtaMode::from_u32(params.eta);
     let si = SiMode::from_u32(params.si_mode);
     let rule = BandRule::from_u32(params.bands);
-    let x0 = Vec2::from_array(q.x);
-    let mut power = 0.0;
+    let x0 = Vec2::from_array(x);
+    let footprint = fp.a1 > 0.0 && fp.a2 > 0.0;
+    let mut e = *fp;
+    e.center = x;
+    let radius = if footprint {
+        math::max(e.a1, e.a2) + CUTOFF_SIGMAS * sigma
+    } else {
+        CUTOFF_SIGMAS * sigma
+    };
+    let mut power = [0.0f32; MAX_LAMBDAS];
     let mut cursor = NearCursor::default();
-    while let Some(s) = set.next_near(&mut cursor, x0, CUTOFF_SIGMAS * sigma) {
-        power += scratch_band_power(
-            &region, &s, wo, x0, eta, sigma, half_turns, lambda, si, rule,
-        );
+    while let Some(s) = set.next_near(&mut cursor, x0, radius) {
+        let Some(frame) = s.frame() else {
+            continue;
+        };
+        let spatial = if footprint {
+            eta_p_accurate(&s, &e, sigma) / (2.0 * math::SQRT_PI * sigma)
+        } else {
+            along_power(eta, &frame, x0, sigma)
+        };
+        if !(spatial > 0.0) {
+            continue;
+        }
+        let mut k = 0;
+        while k < n && k < MAX_LAMBDAS {
+            if lambda[k] > 0.0 {
+                power[k] += spatial
+                    * band_power(
+                        region,
+                        &s,
+                        &frame,
+                        wo,
+                        sigma,
+                        half_turns[k],
+                        lambda[k],
+                        si,
+                        rule,
+                    );
+            }
+            k += 1;
+        }
     }
-    let f = q.material.reflectance(wc, wo);
-    let r = f * power / (math::PI * sigma * sigma);
-    if r.is_finite() && r > 0.0 { r } else { 0.0 }
+    let f = material.reflectance(wc, wo);
+    let mut k = 0;
+    while k < n && k < MAX_LAMBDAS {
+        if lambda[k] > 0.0 {
+            let r = f * power[k] / (math::PI * sigma * sigma);
+            out[k] = if r.is_finite() && r > 0.0 { r } else { 0.0 };
+        }
+        k += 1;
+    }
+    out
 }

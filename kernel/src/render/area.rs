@@ -64,10 +64,74 @@ const _: () = assert!(core::mem::size_of::<SceneLight>() == 80);
 pub const SPHERE_RINGS: u32 = 4;
 /// Sectors in φ around a sphere light's centre direction.
 pub const SPHERE_SECTORS: u32 = 8;
+/// `(sin φ, cos φ)` of the sector centres `φ = 2π(s + ½)/8` (to f32 rounding).
+const SECTOR_SIN_COS: [(f32, f32); SPHERE_SECTORS as usize] = [
+    (0.382_683_43, 0.923_879_5),
+    (0.923_879_5, 0.382_683_43),
+    (0.923_879_5, -0.382_683_43),
+    (0.382_683_43, -0.923_879_5),
+    (-0.382_683_43, -0.923_879_5),
+    (-0.923_879_5, -0.382_683_43),
+    (-0.923_879_5, 0.382_683_43),
+    (-0.382_683_43, 0.923_879_5),
+];
+
 /// A triangle light is split into `TRIANGLE_SPLITS²` sub-triangles.
 pub const TRIANGLE_SPLITS: u32 = 6;
 /// The most quadrature nodes of one light record.
 pub const MAX_NODES: u32 = 36;
+
+/// Probe nodes of a sphere light: 4 nodes of the outermost ring, a quarter turn apart.
+pub const SPHERE_PROBES: u32 = 4;
+/// Probe nodes of a triangle light: its 3 corner sub-triangles.
+pub const TRIANGLE_PROBES: u32 = 3;
+
+/// Number of visibility probes of `light` (0 for point and directional lights).
+///
+/// Adaptive visibility: a renderer traces the probes' shadow rays first; when all agree
+/// (the light wholly visible or wholly hidden, as almost everywhere outside penumbrae) it
+/// takes that answer for every node, and traces the remaining nodes only when they
+/// disagree. An occluder that hides part of the light but none of its probes is missed.
+#[inline]
+pub fn probe_count(light: &SceneLight) -> u32 {
+    match SceneLightKind::from_u32(light.kind) {
+        SceneLightKind::Sphere => SPHERE_PROBES,
+        SceneLightKind::Triangle => TRIANGLE_PROBES,
+        _ => 0,
+    }
+}
+
+/// The node index of probe `k` of `light` ([`probe_count`]): sphere, ring 0 (the
+/// Gauss–Legendre node nearest the rim) at sectors 0, 2, 4, 6; triangle, the sub-triangles
+/// at `v0`, `v1` and `v2`.
+#[inline]
+pub fn probe_node(light: &SceneLight, k: u32) -> u32 {
+    match SceneLightKind::from_u32(light.kind) {
+        SceneLightKind::Sphere => (k % SPHERE_PROBES) * (SPHERE_SECTORS / SPHERE_PROBES),
+        SceneLightKind::Triangle => {
+            let n = TRIANGLE_SPLITS;
+            match k {
+                0 => 0,
+                1 => (n - 1) * (n - 1),
+                _ => n * n - 1,
+            }
+        }
+        _ => 0,
+    }
+}
+
+/// Whether node `i` is one of `light`'s probes.
+#[inline]
+pub fn is_probe(light: &SceneLight, i: u32) -> bool {
+    let mut k = 0;
+    while k < probe_count(light) {
+        if probe_node(light, k) == i {
+            return true;
+        }
+        k += 1;
+    }
+    false
+}
 
 /// One quadrature node: the unit direction from the shading point towards it, the distance
 /// to the light surface along it, and its solid-angle weight (sr).
@@ -113,18 +177,45 @@ pub fn area_node(light: &SceneLight, p: Vec3, i: u32) -> Option<AreaNode> {
     }
 }
 
-fn sphere_node(light: &SceneLight, p: Vec3, i: u32) -> Option<AreaNode> {
+/// The per-point part of a sphere light's quadrature, shared by its nodes.
+#[derive(Clone, Copy, Debug)]
+struct SphereView {
+    to_c: Vec3,
+    d: f32,
+    r: f32,
+    w: Vec3,
+    b1: Vec3,
+    b2: Vec3,
+    mid: f32,
+    span: f32,
+}
+
+fn sphere_view(light: &SceneLight, p: Vec3) -> Option<SphereView> {
     let c = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
     let r = light.p0[3];
     let to_c = c - p;
     let d = to_c.length();
-    if !(d > r && r > 0.0) || i >= SPHERE_RINGS * SPHERE_SECTORS {
+    if !(d > r && r > 0.0) {
         return None;
     }
     let w = to_c / d;
     let sin_a = r / d;
     let cos_a = math::sqrt0((1.0 - sin_a) * (1.0 + sin_a));
-    let ring = i / SPHERE_SECTORS;
+    let (b1, b2) = orthonormal_basis(w);
+    Some(SphereView {
+        to_c,
+        d,
+        r,
+        w,
+        b1,
+        b2,
+        mid: 0.5 * (1.0 + cos_a),
+        span: 0.5 * (1.0 - cos_a),
+    })
+}
+
+fn sphere_view_node(v: &SphereView, i: u32) -> AreaNode {
+    let ring = (i / SPHERE_SECTORS) % SPHERE_RINGS;
     let sector = i % SPHERE_SECTORS;
     // 4-point Gauss–Legendre on [cos α, 1] from the symmetric half tables.
     let half = (ring % 2) as usize;
@@ -133,20 +224,64 @@ fn sphere_node(light: &SceneLight, p: Vec3, i: u32) -> Option<AreaNode> {
     } else {
         (GL4_X[half], GL4_W[half])
     };
-    let mid = 0.5 * (1.0 + cos_a);
-    let span = 0.5 * (1.0 - cos_a);
-    let cos_t = mid + span * xk;
+    let cos_t = v.mid + v.span * xk;
     let sin_t = math::sqrt0((1.0 - cos_t) * (1.0 + cos_t));
-    let phi = math::TAU * (sector as f32 + 0.5) / SPHERE_SECTORS as f32;
-    let (sp, cp) = math::sin_cos(phi);
-    let (b1, b2) = orthonormal_basis(w);
-    let dir = (w * cos_t + b1 * (sin_t * cp) + b2 * (sin_t * sp)).normalize_or_zero();
+    let (sp, cp) = SECTOR_SIN_COS[(sector % SPHERE_SECTORS) as usize];
+    let dir = (v.w * cos_t + v.b1 * (sin_t * cp) + v.b2 * (sin_t * sp)).normalize_or_zero();
     // Distance to the sphere's near surface along dir.
-    let proj = dir.dot(to_c);
-    let disc = math::max(r * r - (d * d - proj * proj), 0.0);
+    let proj = dir.dot(v.to_c);
+    let disc = math::max(v.r * v.r - (v.d * v.d - proj * proj), 0.0);
     let dist = proj - math::sqrt0(disc);
-    let weight = span * wk * math::TAU / SPHERE_SECTORS as f32;
-    Some(AreaNode { dir, dist, weight })
+    let weight = v.span * wk * math::TAU / SPHERE_SECTORS as f32;
+    AreaNode { dir, dist, weight }
+}
+
+fn sphere_node(light: &SceneLight, p: Vec3, i: u32) -> Option<AreaNode> {
+    if i >= SPHERE_RINGS * SPHERE_SECTORS {
+        return None;
+    }
+    sphere_view(light, p).map(|v| sphere_view_node(&v, i))
+}
+
+/// Most probes of one light record.
+pub const MAX_PROBES: usize = 4;
+
+/// The probe nodes of `light` seen from `p` (entry `k` is
+/// `area_node(light, p, probe_node(light, k))`, bitwise), sharing the per-point set-up.
+pub fn probe_nodes(light: &SceneLight, p: Vec3) -> [Option<AreaNode>; MAX_PROBES] {
+    let mut out = [None; MAX_PROBES];
+    match SceneLightKind::from_u32(light.kind) {
+        SceneLightKind::Sphere => {
+            if let Some(v) = sphere_view(light, p) {
+                let mut k = 0;
+                while k < SPHERE_PROBES as usize && k < MAX_PROBES {
+                    out[k] = Some(sphere_view_node(&v, probe_node(light, k as u32)));
+                    k += 1;
+                }
+            }
+        }
+        SceneLightKind::Triangle => {
+            let mut k = 0;
+            while k < TRIANGLE_PROBES as usize && k < MAX_PROBES {
+                out[k] = triangle_node(light, p, probe_node(light, k as u32));
+                k += 1;
+            }
+        }
+        _ => {}
+    }
+    out
+}
+
+/// Whether every point of `light` lies below the plane through `p` with normal `n` (no
+/// node can then be above the horizon): a sphere whose centre is more than its radius
+/// below, a triangle with no vertex above.
+pub fn below_horizon(light: &SceneLight, p: Vec3, n: Vec3) -> bool {
+    let h = |v: [f32; 4]| (Vec3::new(v[0], v[1], v[2]) - p).dot(n);
+    match SceneLightKind::from_u32(light.kind) {
+        SceneLightKind::Sphere => h(light.p0) < -light.p0[3],
+        SceneLightKind::Triangle => h(light.p0) <= 0.0 && h(light.p1) <= 0.0 && h(light.p2) <= 0.0,
+        _ => false,
+    }
 }
 
 fn triangle_node(light: &SceneLight, p: Vec3, i: u32) -> Option<AreaNode> {

@@ -132,3 +132,17 @@ pub fn velinov_footprint_brdf<S: ScratchSet>(
     let r = f * sum / (math::PI * sigma * sigma * lambda * lambda);
     if r.is_finite() && r > 0.0 { r } else { 0.0 }
 }
+
+/// `ρ_P = Σ_k (1/A_P) ∫_P ρ_k(x) dx`, the scratches' area density averaged over footprint
+/// `e` ([`rho_p_accurate`], Velinov Eq. 18's quantity), over the scratches within
+/// `max(a1, a2) + 6σ` of its centre.
+pub fn footprint_density<S: ScratchSet>(sigma: f32, e: &Ellipse, set: &S) -> f32 {
+    let centre = Vec2::from_array(e.center);
+    let radius = math::max(e.a1, e.a2) + CUTOFF_SIGMAS * sigma;
+    let mut rho = 0.0;
+    let mut cursor = NearCursor::default();
+    while let Some(s) = set.next_near(&mut cursor, centre, radius) {
+        rho += rho_p_accurate(&s, e, sigma);
+    }
+    rho
+}

@@ -7,19 +7,19 @@
 //! * `werner_blended` and `velinov` with a GHS base add `(1 − ρc)·f_base` (Werner 2017 §5;
 //!   Velinov 2018 Eq. 7's `(1 − ρc)` weight), ρc from [`scratch_area_density`].
 //! * Point light: `f·max(cos θi, 0)·I/d²`; directional: `f·max(cos θi, 0)·E`.
-//! * Area lights for `velinov`: Velinov's closed form ([`light_integral`], Eqs. 19–41)
+//! * Area lights for `velinov`: Velinov's closed form ([`light_integrals_in`], Eqs. 19–41)
 //!   times the radiance and the visible fraction of the light; a smooth base (or Velinov's
 //!   Gaussian base, whose lobe integrates to a mirror) adds `(1 − ρc)·F·L` when the mirror
 //!   direction of `wo` lies in the light. Every other model and a GHS base use the
 //!   quadrature of [`super::area`].
 
 use super::area::{AreaNode, SceneLight, SceneLightKind};
-use super::footprint::velinov_footprint_brdf;
+use super::footprint::{footprint_density, velinov_footprint_brdf};
 use super::surface::SurfacePoint;
 use crate::footprint::Ellipse;
 use crate::ghs::GhsParams;
 use crate::lights::{
-    BandRule, Cone, Light, LightParams, LightQuery, LightRegion, SiMode, light_integral,
+    BandRule, Cone, Light, LightParams, LightRegion, MAX_LAMBDAS, SiMode, light_integrals_in,
 };
 use crate::material::Material;
 use crate::math;
@@ -203,6 +203,14 @@ pub fn closed_form_area(m: &ShadeMaterial) -> bool {
     SceneModel::from_u32(m.model) == SceneModel::Velinov
 }
 
+/// Whether `m` needs the per-node quadrature under an area light: every model but
+/// `velinov`, and `velinov` with a GHS base ([`base_node_radiance`]); otherwise only the
+/// light's visible fraction is needed.
+#[inline]
+pub fn needs_area_nodes(m: &ShadeMaterial) -> bool {
+    !closed_form_area(m) || BaseKind::from_u32(m.base) == BaseKind::Ghs
+}
+
 /// The kernel light record of a sphere or triangle light relative to the shading point, in
 /// the shading frame.
 pub fn local_light(sp: &SurfacePoint, light: &SceneLight) -> Light {
@@ -224,18 +232,24 @@ pub fn local_light(sp: &SurfacePoint, light: &SceneLight) -> Light {
     }
 }
 
-/// Velinov's model under a sphere or triangle light, unoccluded: the closed-form scratch
-/// integral ([`light_integral`], Velinov Eqs. 19–41, extent band rule, exact Si) times the
-/// radiance, plus the mirror part of a smooth or Gaussian base. A GHS base is added by the
-/// caller through [`base_node_radiance`].
+/// Velinov's model under a sphere or triangle light, unoccluded, at the first `count` of
+/// `lambdas_nm` (one scratch walk): the closed-form scratch integral ([`light_integrals_in`],
+/// Velinov Eqs. 19–41, extent band rule, exact Si) times the radiance, plus the mirror
+/// part of a smooth or Gaussian base (the same at every wavelength). With a footprint
+/// (`fp.a1 > 0`, centred on the shading point) each scratch's spatial factor is averaged
+/// over it (Velinov §4) and the mirror base is weighted by `1 − ρ_P`
+/// ([`footprint_density`], Velinov Eq. 18); `fp.a1 = 0` is the point model. A GHS base is
+/// added by the caller through [`base_node_radiance`].
 pub fn velinov_area_light<S: ScratchSet>(
     m: &ShadeMaterial,
     sp: &SurfacePoint,
     wo: Vec3,
     light: &SceneLight,
-    lambda_nm: f32,
+    lambdas_nm: &[f32; MAX_LAMBDAS],
+    count: usize,
     set: &S,
-) -> f32 {
+    fp: &Ellipse,
+) -> [f32; MAX_LAMBDAS] {
     let kl = local_light(sp, light);
     let params = LightParams {
         sigma_um: m.table.sigma_um,
@@ -245,27 +259,39 @@ pub fn velinov_area_light<S: ScratchSet>(
         bands: BandRule::Extent as u32,
         pad: [0; 3],
     };
-    let q = LightQuery {
-        wo: wo.to_array(),
-        lambda_nm,
-        x: sp.x_um.to_array(),
-        pad: [0.0; 2],
-        material: m.material,
-        light: kl,
+    let Some(region) = LightRegion::new(&kl) else {
+        return [0.0; MAX_LAMBDAS];
     };
-    let mut l = light_integral(&params, &q, set);
+    let mut l = light_integrals_in(
+        &params,
+        &region,
+        wo.to_array(),
+        sp.x_um.to_array(),
+        &m.material,
+        lambdas_nm,
+        count,
+        fp,
+        set,
+    );
     let mirror_base = BaseKind::from_u32(m.base) == BaseKind::Smooth || m.table.base_gaussian == 1;
+    let mut mirror = 0.0;
     if mirror_base {
         let wm = Vec3::new(-wo.x, -wo.y, wo.z);
-        let inside = match LightRegion::new(&kl) {
-            Some(region) => wm.z > 0.0 && region.contains(wm),
-            None => false,
-        };
-        if inside {
-            l += base_weight(m, sp.x_um, set) * m.material.reflectance(wm, wo);
+        if wm.z > 0.0 && region.contains(wm) {
+            let weight = if fp.a1 > 0.0 && fp.a2 > 0.0 {
+                math::max(1.0 - footprint_density(m.table.sigma_um, fp, set), 0.0)
+            } else {
+                base_weight(m, sp.x_um, set)
+            };
+            mirror = weight * m.material.reflectance(wm, wo);
         }
     }
-    l * light.emission
+    let mut k = 0;
+    while k < count && k < MAX_LAMBDAS {
+        l[k] = (l[k] + mirror) * light.emission;
+        k += 1;
+    }
+    l
 }
 
 /// A GHS base's share of one quadrature node for Velinov's model under an area light:
