@@ -53,6 +53,13 @@ impl<Q: RayQueries> RayQueries for Timed<'_, Q> {
         self.nanos
             .fetch_add(t.elapsed().as_nanos() as u64, Ordering::Relaxed);
     }
+
+    fn occluded_many(&self, rays: &[Ray], out: &mut [bool], coherence: Coherence) {
+        let t = Instant::now();
+        self.inner.occluded_many(rays, out, coherence);
+        self.nanos
+            .fetch_add(t.elapsed().as_nanos() as u64, Ordering::Relaxed);
+    }
 }
 
 /// An 8-pointed star (16 vertices, inner radius 0.4 of the outer) centred at `c`, facing

@@ -23,7 +23,11 @@ fn scratches() -> [Scratch; 3] {
         depth: 0.2,
         profile: 0,
     };
-    [s([0.0, 4.0], 0.1), s([0.0, -30.0], 0.35), s([0.0, 55.0], -0.2)]
+    [
+        s([0.0, 4.0], 0.1),
+        s([0.0, -30.0], 0.35),
+        s([0.0, 55.0], -0.2),
+    ]
 }
 
 fn params() -> LightParams {
@@ -79,7 +83,7 @@ fn footprint_average_matches_grid_mean_of_point_form() {
         Light::polygon(&[[-0.1, -0.12, 1.0], [0.15, -0.1, 1.0], [0.02, 0.14, 1.0]]),
     ];
     let ellipses = [(35.0, 12.0, 0.3), (80.0, 50.0, -1.0), (20.0, 20.0, 0.0)];
-    let mut checked = 0;
+    let (mut checked, mut worst) = (0, 0.0f64);
     for light in lights {
         for &(a1, a2, angle) in &ellipses {
             let e = Ellipse {
@@ -93,11 +97,16 @@ fn footprint_average_matches_grid_mean_of_point_form() {
             let want = grid_mean(&e, light, &set);
             assert!(want > 0.0, "light misses every band: {light:?}");
             let rel = (f64::from(got) - want).abs() / want;
-            assert!(rel < 2e-3, "a1 {a1} a2 {a2}: footprint {got} vs grid {want} ({rel:.2e})");
+            assert!(
+                rel < 3e-4,
+                "a1 {a1} a2 {a2}: footprint {got} vs grid {want} ({rel:.2e})"
+            );
+            worst = worst.max(rel);
             checked += 1;
         }
     }
     assert_eq!(checked, 6);
+    println!("worst relative difference from the grid mean: {worst:.2e}");
 }
 
 #[test]

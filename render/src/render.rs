@@ -3,8 +3,8 @@
 //! only ([`scratchwave_kernel::render`]).
 
 use crate::prepare::Prepared;
-use crate::scene::{Footprint, Shadows};
 use crate::scene::Scene;
+use crate::scene::{Footprint, Shadows};
 use rayon::prelude::*;
 use scratchwave_host::{Coherence, RayQueries};
 use scratchwave_kernel::footprint::Ellipse;
@@ -415,7 +415,12 @@ fn area_light<Q: RayQueries + ?Sized, S: scratchwave_kernel::scratch::ScratchSet
     let (sp, wo, fp) = (&hp.sp, hp.wo, &hp.fp);
     let occluded = |node: &area::AreaNode, rays: &mut u64| {
         *rays += 1;
-        queries.occluded(&shading::shadow_ray(sp.position, hp.ng, node.dir, node.dist))
+        queries.occluded(&shading::shadow_ray(
+            sp.position,
+            hp.ng,
+            node.dir,
+            node.dist,
+        ))
     };
     let nodes = shading::needs_area_nodes(m);
     if consensus == Some(false) {

@@ -3,8 +3,8 @@
 
 use crate::prepare::{estimate_bytes, triangulate};
 use crate::scene::{
-    DEFAULT_UNIT_UM, Footprint, LightDef, Object, RenderSettings, Scene, SceneMaterial, Shadows, Shape,
-    Spectrum,
+    DEFAULT_UNIT_UM, Footprint, LightDef, Object, RenderSettings, Scene, SceneMaterial, Shadows,
+    Shape, Spectrum,
 };
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::render::camera::{Camera, Projection};

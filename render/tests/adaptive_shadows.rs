@@ -12,13 +12,17 @@ use serde_json::{Value, json};
 use std::path::Path;
 
 fn scene(shadows: &str, card: bool) -> Value {
-    let mut objects = vec![json!({"shape": "rectangle", "center": [0, 0, 0], "tangent": [1, 0, 0],
-        "normal": [0, 0, 1], "size": [6, 6], "material": "rough"})];
+    let mut objects = vec![
+        json!({"shape": "rectangle", "center": [0, 0, 0], "tangent": [1, 0, 0],
+        "normal": [0, 0, 1], "size": [6, 6], "material": "rough"}),
+    ];
     if card {
         // A vertical card, edge-on to the camera (no pixel sees it), casting a soft shadow
         // on the plate at 0.28 < x < 1.9.
-        objects.push(json!({"shape": "rectangle", "center": [0, 0, 0.8], "tangent": [0, 1, 0],
-            "normal": [1, 0, 0], "size": [1.2, 1.0], "material": "rough"}));
+        objects.push(
+            json!({"shape": "rectangle", "center": [0, 0, 0.8], "tangent": [0, 1, 0],
+            "normal": [1, 0, 0], "size": [1.2, 1.0], "material": "rough"}),
+        );
     }
     json!({
         "unit_um": 1000,
@@ -72,7 +76,10 @@ fn check(backend: Backend) {
             }
         }
     }
-    assert!(lit > 1000 && umbra > 20 && penumbra > 50, "lit {lit}, umbra {umbra}, penumbra {penumbra}");
+    assert!(
+        lit > 1000 && umbra > 20 && penumbra > 50,
+        "lit {lit}, umbra {umbra}, penumbra {penumbra}"
+    );
     assert!(
         differ * 5 <= penumbra,
         "{differ} of {penumbra} penumbra pixels differ"

@@ -520,6 +520,23 @@ fn extent_power(
     sum
 }
 
+/// Band offsets (in the band's standard deviations) beyond which a light cannot contribute:
+/// [`EXTENT_SDS`] with a margin for rounding (every band rule stays within 4.5).
+const REJECT_SDS: f32 = 4.6;
+
+/// Whether the light can meet a band of the scratch within [`REJECT_SDS`] standard
+/// deviations `sd` of the central band ξ₁ = 0 (the test [`extent_power`] starts with,
+/// done once for all wavelengths at the widest `sd`). `false` means every band rule gives
+/// 0 for this scratch at every `sd` up to this one.
+#[inline]
+pub fn band_may_reach(region: &LightRegion, frame: &SegmentFrame, wo: Vec3, sd: f32) -> bool {
+    let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
+    let t3 = Vec3::new(frame.tangent.x, frame.tangent.y, 0.0);
+    let (lo, hi) = region.dot_range(t3);
+    let reach = REJECT_SDS * sd;
+    lo + wo_t <= reach && hi + wo_t >= -reach
+}
+
 /// One scratch's `∫ |S_k|² dξ₁ dξ₂` over the lit band (µm²) at the point `x0`:
 /// [`band_power`] times [`along_power`].
 #[allow(clippy::too_many_arguments)]
@@ -684,6 +701,15 @@ pub fn light_integrals_in<S: ScratchSet>(
     if !any {
         return out;
     }
+    // The widest band window (the longest wavelength's): a scratch whose window misses the
+    // light there misses it at every wavelength.
+    let mut lambda_max = 0.0f32;
+    let mut k = 0;
+    while k < n && k < MAX_LAMBDAS {
+        lambda_max = math::max(lambda_max, lambda[k]);
+        k += 1;
+    }
+    let sd_max = lambda_max / (2.0 * math::SQRT_2 * math::PI * sigma);
     let eta = EtaMode::from_u32(params.eta);
     let si = SiMode::from_u32(params.si_mode);
     let rule = BandRule::from_u32(params.bands);
@@ -702,6 +728,10 @@ pub fn light_integrals_in<S: ScratchSet>(
         let Some(frame) = s.frame() else {
             continue;
         };
+        // The cheap angular test first: most scratches' bands miss a small light.
+        if !band_may_reach(region, &frame, wo, sd_max) {
+            continue;
+        }
         let spatial = if footprint {
             eta_p_accurate(&s, &e, sigma) / (2.0 * math::SQRT_PI * sigma)
         } else {

@@ -23,8 +23,8 @@ pub mod sphere;
 
 pub use band::{SiMode, band_antiderivative, band_integral};
 pub use integrate::{
-    BandRule, Light, LightKind, LightParams, LightQuery, LightRegion, light_integral,
-    MAX_LAMBDAS, light_integral_footprint, light_integrals, light_integrals_in,
+    BandRule, Light, LightKind, LightParams, LightQuery, LightRegion, MAX_LAMBDAS, light_integral,
+    light_integral_footprint, light_integrals, light_integrals_in,
 };
 pub use limits::{MAX_BREAKPOINTS, MAX_VERTICES};
 pub use polygon::SphericalPolygon;

@@ -120,19 +120,6 @@ pub fn probe_node(light: &SceneLight, k: u32) -> u32 {
     }
 }
 
-/// Whether node `i` is one of `light`'s probes.
-#[inline]
-pub fn is_probe(light: &SceneLight, i: u32) -> bool {
-    let mut k = 0;
-    while k < probe_count(light) {
-        if probe_node(light, k) == i {
-            return true;
-        }
-        k += 1;
-    }
-    false
-}
-
 /// One quadrature node: the unit direction from the shading point towards it, the distance
 /// to the light surface along it, and its solid-angle weight (sr).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -4,7 +4,7 @@
 //! * Rectangle: the point `center + a·tangent + b·(normal × tangent)` has scratch-space
 //!   position `(a, b)·unit_um` µm and frame `x = tangent`, `y = normal × tangent`,
 //!   `z = normal`.
-//! * Sphere: `u = φ/2π`, `v = θ/π` about the pole axis `normal` (φ from `tangent`);
+//! * Sphere: `u = φ/2π ∈ [0, 1)`, `v = θ/π` about the pole axis `normal` (φ from `tangent`);
 //!   scratch space `(u, 1 − v)·uv_um` µm; frame `x` along `∂P/∂u`, `z` the outward normal,
 //!   `y = z × x` (towards the pole).
 //! * Mesh: scratch space `UV·uv_um` µm, frame `x` along `∂P/∂u` ([`mesh_point`]).
@@ -101,7 +101,9 @@ pub fn surface_point(s: &Surface, p: Vec3) -> SurfacePoint {
         let b = n.cross(t);
         // φ about the pole n, from t towards n × t; θ from the pole.
         let (cx, cy, cz) = (z.dot(t), z.dot(b), z.dot(n));
+        // φ in [0, 2π), so that u = φ/2π covers [0, 1) like every UV map.
         let phi = math::atan2(cy, cx);
+        let phi = if phi < 0.0 { phi + math::TAU } else { phi };
         let theta = math::acos(math::clamp(cz, -1.0, 1.0));
         // ∂P/∂φ ∝ n × z; at the poles fall back to the tangent.
         let mut x = n.cross(z);
