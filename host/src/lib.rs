@@ -31,6 +31,6 @@ pub use backend::{BackendError, TableBackend};
 pub use batch::{CaseBatch, FootprintBatch, FootprintRow, LightBatch, TableBatch};
 pub use mesh::MeshError;
 pub use queries::{Coherence, RayQueries, SegmentRadiusQuery};
-pub use scratch_lookup::ScratchLookup;
+pub use scratch_lookup::{GridData, ScratchLookup};
 pub use segment_bvh::SegmentBvh;
 pub use triangle_bvh::TriangleBvh;

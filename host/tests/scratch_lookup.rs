@@ -1,5 +1,5 @@
-//! The scratch lookup returns exactly the brute-force set "every scratch within r of x0",
-//! and the models give the same values through it as through a plain slice.
+//! The scratch lookup (and its grid) returns exactly the brute-force set "every scratch
+//! within r of x0", and the models give the same values through it as through a plain slice.
 
 use glam::Vec2;
 use scratchwave_host::ScratchLookup;
@@ -72,6 +72,40 @@ fn lookup_equals_brute_force() {
         total_queries += queries;
     }
     assert!(total_queries >= 10_000);
+}
+
+#[test]
+fn grid_equals_brute_force() {
+    let mut found = 0;
+    for (n, extent, seed) in [(2_000usize, 3_000.0f32, 1u64), (20_000, 12_000.0, 2)] {
+        let scratches = field(n, extent, seed);
+        let lookup = ScratchLookup::new(&scratches, 10.0);
+        let data = lookup.grid(10.0, 64 * n).expect("grid within budget");
+        assert_eq!(data.header.radius, 60.0);
+        let grid = data.set(&lookup);
+        let brute = ScratchSlice {
+            scratches: &scratches,
+        };
+        let mut r = SplitMix64::new(seed + 100);
+        for q in 0..4_000 {
+            // Points beyond the field too (outside the grid), and radii below, at and
+            // above the grid's (the last go to the BVH).
+            let x = Vec2::new(
+                extent * (1.2 * r.next_f32() - 0.1),
+                extent * (1.2 * r.next_f32() - 0.1),
+            );
+            let radius = [0.0, 25.0, 60.0, 90.0][q % 4];
+            let a = collect(&grid, x, radius);
+            assert_eq!(a, collect(&brute, x, radius), "n={n} x={x} r={radius}");
+            found += a.len();
+        }
+    }
+    assert!(found > 4_000, "non-empty answers expected: {found}");
+    // A budget too small for the cells leaves the BVH alone.
+    let scratches = field(100, 100_000.0, 3);
+    let lookup = ScratchLookup::new(&scratches, 10.0);
+    assert!(lookup.grid(10.0, 1_000).is_none());
+    assert!(ScratchLookup::new(&[], 10.0).grid(10.0, 1 << 20).is_none());
 }
 
 #[test]

@@ -2,12 +2,13 @@
 //! per material, lights → kernel records (polygons triangulated), and the ray structures.
 
 use crate::scene::{LightDef, Scene, Shape};
-use scratchwave_host::{ScratchLookup, TriangleBvh};
+use scratchwave_host::{GridData, ScratchLookup, TriangleBvh};
 use scratchwave_kernel::math;
 use scratchwave_kernel::ray::Triangle;
 use scratchwave_kernel::render::area::{SceneLight, SceneLightKind};
 use scratchwave_kernel::render::shading::ShadeMaterial;
 use scratchwave_kernel::render::surface::{Surface, SurfaceKind, TriangleUv};
+use scratchwave_kernel::scratch::{GridHeader, ScratchGrid};
 
 /// Everything the tile loop reads, independent of the ray backend.
 pub struct Prepared {
@@ -23,8 +24,32 @@ pub struct Prepared {
     pub materials: Vec<ShadeMaterial>,
     /// Scratch lookup per material.
     pub lookups: Vec<ScratchLookup>,
+    /// Scratch grid per material (`None`: the lookup's BVH answers every query).
+    pub grids: Vec<Option<GridData>>,
     /// Light records (a polygon gives several triangles).
     pub lights: Vec<SceneLight>,
+}
+
+/// The most scratch-grid entries (cells + list entries) per scratch; a material whose grid
+/// would need more (few scratches spread over a wide area) uses its BVH alone.
+pub const GRID_ENTRIES_PER_SCRATCH: u64 = 16;
+
+impl Prepared {
+    /// The scratch set of material `mi`: its grid over the BVH, or the BVH alone.
+    pub fn scratch_set(&self, mi: usize) -> ScratchGrid<'_> {
+        match &self.grids[mi] {
+            Some(g) => g.set(&self.lookups[mi]),
+            None => ScratchGrid {
+                header: GridHeader {
+                    radius: -1.0,
+                    ..GridHeader::default()
+                },
+                offsets: &[],
+                items: &[],
+                bvh: self.lookups[mi].set(),
+            },
+        }
+    }
 }
 
 /// Bytes the preparation and the image of `scene` will take, estimated before allocating
@@ -44,8 +69,11 @@ pub fn estimate_bytes(scene: &Scene) -> u64 {
         .map(|m| m.scratches.len() as u64)
         .sum();
     let pixels = u64::from(scene.camera.width_px) * u64::from(scene.camera.height_px);
-    // Triangle 36 B + BVH node 32 B ×2 + ids, twice (build copy); scratches 64 B + nodes.
-    tris * 2 * (36 + 64 + 8 + 24) + scratches * 2 * (64 + 64 + 8) + pixels * (12 + 12 + 4)
+    // Triangle 36 B + BVH node 32 B ×2 + ids, twice (build copy); scratches 64 B + nodes;
+    // the scratch grids at most GRID_ENTRIES_PER_SCRATCH u32 entries per scratch.
+    tris * 2 * (36 + 64 + 8 + 24)
+        + scratches * (2 * (64 + 64 + 8) + 4 * GRID_ENTRIES_PER_SCRATCH)
+        + pixels * (12 + 12 + 4)
 }
 
 /// Builds the preparation of `scene`.
@@ -151,10 +179,19 @@ pub fn prepare(scene: &Scene) -> Prepared {
         prim_object.resize(triangles.len(), oi as u32);
         debug_assert!(triangles.len() > before);
     }
-    let lookups = scene
+    let lookups: Vec<ScratchLookup> = scene
         .materials
         .iter()
         .map(|m| ScratchLookup::new(&m.scratches, m.shade.table.sigma_um))
+        .collect();
+    let grids = scene
+        .materials
+        .iter()
+        .zip(&lookups)
+        .map(|(m, l)| {
+            let budget = (m.scratches.len() as u64 * GRID_ENTRIES_PER_SCRATCH).max(1 << 20);
+            l.grid(m.shade.table.sigma_um, budget as usize)
+        })
         .collect();
     let mut lights = Vec::new();
     for (li, l) in scene.lights.iter().enumerate() {
@@ -214,6 +251,7 @@ pub fn prepare(scene: &Scene) -> Prepared {
         surfaces,
         materials: scene.materials.iter().map(|m| m.shade).collect(),
         lookups,
+        grids,
         lights,
     }
 }

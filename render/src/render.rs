@@ -350,7 +350,7 @@ fn shade_light<Q: RayQueries + ?Sized>(
     shadow_rays: &mut u64,
 ) {
     let m: &ShadeMaterial = &ctx.prep.materials[hp.material];
-    let set = ctx.prep.lookups[hp.material].set();
+    let set = ctx.prep.scratch_set(hp.material);
     if is_delta(light) {
         // No ray (below the horizon) or a blocked one: nothing arrives.
         if first_blocked != [false] {

@@ -11,6 +11,7 @@
 //! | `coherent_sum` | `S = Σ S_k` summed exactly on a grid, so `B − S` survives cancellation |
 
 pub mod coherent_sum;
+pub mod grid;
 pub mod profile;
 pub mod record;
 pub mod response;
@@ -18,6 +19,7 @@ pub mod set;
 pub mod spatial_phase;
 
 pub use coherent_sum::CoherentSum;
+pub use grid::{GridHeader, ScratchGrid};
 pub use profile::{DepthTerm, Profile};
 pub use record::{Scratch, SegmentFrame};
 pub use response::{
