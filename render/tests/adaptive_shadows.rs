@@ -88,6 +88,10 @@ fn check(backend: Backend) {
         adaptive_rays * 3 < all_rays,
         "adaptive {adaptive_rays} vs all nodes {all_rays} shadow rays"
     );
+    println!(
+        "{}: lit {lit}, umbra {umbra}, penumbra {penumbra} ({differ} differ); shadow rays {adaptive_rays} adaptive vs {all_rays}",
+        backend.name()
+    );
 }
 
 #[test]
