@@ -1,7 +1,7 @@
 //! Scene preparation: shapes → one triangle list (primitive → object), one scratch lookup
 //! per material, lights → kernel records (polygons triangulated), and the ray structures.
 
-use crate::scene::{LightDef, Scene, Shape};
+use crate::scene::{LightDef, Lookup, Scene, Shape};
 use scratchwave_host::{GridData, ScratchLookup, TriangleBvh};
 use scratchwave_kernel::math;
 use scratchwave_kernel::ray::Triangle;
@@ -189,6 +189,9 @@ pub fn prepare(scene: &Scene) -> Prepared {
         .iter()
         .zip(&lookups)
         .map(|(m, l)| {
+            if scene.settings.lookup != Lookup::Grid {
+                return None;
+            }
             let budget = (m.scratches.len() as u64 * GRID_ENTRIES_PER_SCRATCH).max(1 << 20);
             l.grid(m.shade.table.sigma_um, budget as usize)
         })

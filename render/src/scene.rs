@@ -163,6 +163,16 @@ pub enum Shadows {
     AllNodes,
 }
 
+/// How shading finds the scratches near a hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lookup {
+    /// A uniform grid for the models' radius (`kernel::scratch::grid`), the BVH for larger
+    /// ones (pixel footprints).
+    Grid,
+    /// The BVH alone (`kernel::scratch::set::ScratchBvh`).
+    Bvh,
+}
+
 /// Sampling settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -172,4 +182,6 @@ pub struct RenderSettings {
     pub footprint: Footprint,
     /// Shadow rays towards area lights.
     pub shadows: Shadows,
+    /// Scratch lookup.
+    pub lookup: Lookup,
 }

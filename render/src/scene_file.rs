@@ -3,8 +3,8 @@
 
 use crate::prepare::{estimate_bytes, triangulate};
 use crate::scene::{
-    DEFAULT_UNIT_UM, Footprint, LightDef, Object, RenderSettings, Scene, SceneMaterial, Shadows,
-    Shape, Spectrum,
+    DEFAULT_UNIT_UM, Footprint, LightDef, Lookup, Object, RenderSettings, Scene, SceneMaterial,
+    Shadows, Shape, Spectrum,
 };
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::render::camera::{Camera, Projection};
@@ -702,9 +702,14 @@ fn settings(v: Option<&Value>) -> Result<RenderSettings, SpecError> {
             spp: 1,
             footprint: Footprint::None,
             shadows: Shadows::Adaptive,
+            lookup: Lookup::Grid,
         });
     };
-    let o = Obj::new(v, "render", &["spp", "footprint", "shadows"])?;
+    let o = Obj::new(
+        v,
+        "render",
+        &["spp", "footprint", "shadows", "scratch_lookup"],
+    )?;
     let spp = int(&o, "spp", 1, MAX_SPP, 1)? as u32;
     let footprint = match o.opt_choice("footprint", &["none", "ellipse"])? {
         Some("ellipse") => Footprint::Ellipse,
@@ -714,9 +719,14 @@ fn settings(v: Option<&Value>) -> Result<RenderSettings, SpecError> {
         Some("all_nodes") => Shadows::AllNodes,
         _ => Shadows::Adaptive,
     };
+    let lookup = match o.opt_choice("scratch_lookup", &["grid", "bvh"])? {
+        Some("bvh") => Lookup::Bvh,
+        _ => Lookup::Grid,
+    };
     Ok(RenderSettings {
         spp,
         footprint,
         shadows,
+        lookup,
     })
 }
