@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite: setup, formatting, lints, docs, every crate's tests (including the
 # SPIR-V build and the lavapipe conformance cases), the conformance run and a fuzz smoke
-# (scripts/fuzz.sh 20: every cargo-fuzz target for 20 s).
+# (scripts/fuzz.sh 20: every cargo-fuzz target for 20 s). Formatting and lints cover the
+# fuzz crate too (its own workspace).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -9,8 +10,14 @@ export CARGO_TERM_COLOR=never
 step() { printf '\n== %s\n' "$*" >&2; }
 step "cargo fmt --check"
 cargo fmt --all -- --check
+# fuzz/ is its own workspace, which `--all`/`--workspace` skip: check it by its manifest.
+cargo fmt --manifest-path fuzz/Cargo.toml -- --check
 step "cargo clippy -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
+# The fuzz crate with the same stable clippy (no sanitizer flags: lints only), in the fuzz
+# build directory so its dependencies are checked once per cache.
+CARGO_TARGET_DIR=${FUZZ_TARGET_DIR:-$PWD/fuzz/target} \
+  cargo clippy --manifest-path fuzz/Cargo.toml --all-targets --locked -- -D warnings
 step "cargo doc"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --quiet
 step "cargo test"

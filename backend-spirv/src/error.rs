@@ -10,12 +10,16 @@ pub enum SpirvError {
     /// No Vulkan driver answered: the loader (`libvulkan1`) or every ICD is missing.
     #[error(
         "no Vulkan device found: install the Vulkan loader and the lavapipe CPU driver \
-         (Debian/Ubuntu: `apt install mesa-vulkan-drivers libvulkan1`, or run scripts/setup.sh); \
+         (Debian/Ubuntu: `apt install mesa-vulkan-drivers libvulkan1`, or run scripts/setup.sh; \
+         `vulkaninfo --summary` from `vulkan-tools` shows what the loader finds); \
          the CPU backends work without Vulkan"
     )]
     NoVulkan,
     /// `SCRATCHWAVE_ADAPTER` (or an explicit choice) matched none of the adapters.
-    #[error("no Vulkan adapter matches {wanted}; available: {available}")]
+    #[error(
+        "no Vulkan adapter matches {wanted}; available: {available} \
+         (`vulkaninfo --summary` lists them)"
+    )]
     NoMatchingAdapter {
         /// The choice as the user spelled it.
         wanted: String,
@@ -23,7 +27,7 @@ pub enum SpirvError {
         available: String,
     },
     /// The adapter refused to create a device.
-    #[error("creating a device on {adapter}: {source}")]
+    #[error("creating a device on {adapter}: {source} (diagnose: `vulkaninfo --summary`)")]
     RequestDevice {
         /// Adapter name.
         adapter: String,
@@ -79,7 +83,10 @@ pub enum SpirvError {
         max: u64,
     },
     /// wgpu reported a validation, out-of-memory or internal error.
-    #[error("GPU error while {during}: {message}")]
+    #[error(
+        "GPU error while {during}: {message} (device lost, out of memory or a driver fault; \
+         diagnose: `vulkaninfo --summary`, the driver's log)"
+    )]
     Gpu {
         /// What the backend was doing.
         during: String,

@@ -150,6 +150,17 @@ impl Gpu {
         self
     }
 
+    /// Caps the bytes of one storage binding below the device's
+    /// `max_storage_buffer_binding_size` (never above it). Per-item inputs are then split
+    /// into more dispatches so that no binding exceeds the cap; a whole input above it is
+    /// [`SpirvError::TooLarge`] naming the limit. A service can use it as a size budget per
+    /// dispatch; tests use it to reach both paths without allocating the device's limit.
+    pub fn with_max_binding_bytes(mut self, bytes: u64) -> Self {
+        let l = &mut self.limits;
+        l.max_storage_buffer_binding_size = l.max_storage_buffer_binding_size.min(bytes);
+        self
+    }
+
     /// The pipeline for `entry` with `inputs` read-only buffers, compiled on first use;
     /// also returns the compile time (zero when cached).
     pub(crate) fn pipeline(&self, entry: &str, inputs: usize) -> Result<(Arc<Pipeline>, Duration)> {

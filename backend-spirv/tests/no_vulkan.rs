@@ -1,4 +1,5 @@
-//! Without a Vulkan driver the backend reports what to install instead of panicking.
+//! Without a Vulkan driver the backend reports what to install, and the command that
+//! diagnoses it, instead of panicking.
 //! Its own test binary: it points the Vulkan loader at no driver for the whole process.
 
 use scratchwave_spirv::{Gpu, SpirvError};
@@ -15,7 +16,8 @@ fn no_vulkan_driver_is_a_typed_error_naming_the_packages() {
         Err(error @ SpirvError::NoVulkan) => {
             let message = error.to_string();
             assert!(
-                message.contains("mesa-vulkan-drivers libvulkan1"),
+                message.contains("mesa-vulkan-drivers libvulkan1")
+                    && message.contains("vulkaninfo --summary"),
                 "{message}"
             );
         }

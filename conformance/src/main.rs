@@ -5,7 +5,7 @@
 
 use scratchwave_conformance::format::g9;
 use scratchwave_conformance::{backends, run};
-use scratchwave_host::{BackendError, CaseBatch, TableBatch};
+use scratchwave_host::{BackendError, CaseBatch, TableBackend, TableBatch};
 use scratchwave_spec::{SpecError, json, spec};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -35,6 +35,10 @@ fn main() -> ExitCode {
             eprintln!("error: backend failed: {e}");
             ExitCode::from(1)
         }
+        Err(Failure::Output(e)) => {
+            eprintln!("error: writing stdout: {e}");
+            ExitCode::from(1)
+        }
     }
 }
 
@@ -42,6 +46,7 @@ enum Failure {
     Usage(String),
     Spec(SpecError),
     Backend(BackendError),
+    Output(String),
 }
 
 impl From<SpecError> for Failure {
@@ -84,13 +89,78 @@ fn flag<'a>(flags: &[(&str, &'a str)], name: &str) -> Option<&'a str> {
         .map(|(_, v)| *v)
 }
 
-/// `--backend cpu|simd` for the commands that run on the CPU backends only.
+/// Bytes of memory a JSON spec takes while it is parsed and read, per byte of the file
+/// (text, `serde_json::Value` tree and the records read from it): twice the 12.8 measured
+/// with `/usr/bin/time -v scratchwave table` on a listed 10⁵-query spec (10.5 MB file,
+/// 134 MB peak RSS; README, Reliability). JSON made of many tiny objects can need more.
+const JSON_BYTES_PER_FILE_BYTE: u64 = 24;
+
+/// Reads and parses a JSON spec; refuses, before reading it, a file whose parse would need
+/// more than the memory limit (`scratchwave_render::scene_file::memory_limit_bytes`: 8 GiB
+/// or half the machine's memory) at [`JSON_BYTES_PER_FILE_BYTE`].
 fn read_json(path: &str) -> Result<serde_json::Value, SpecError> {
-    let text = std::fs::read_to_string(path).map_err(|e| SpecError::Io {
+    let io = |e: std::io::Error| SpecError::Io {
         path: path.into(),
         msg: e.to_string(),
-    })?;
+    };
+    let len = std::fs::metadata(path).map_err(io)?.len();
+    let limit = scratchwave_render::scene_file::memory_limit_bytes();
+    if len.saturating_mul(JSON_BYTES_PER_FILE_BYTE) > limit {
+        return Err(SpecError::Io {
+            path: path.into(),
+            msg: format!(
+                "{len} bytes would need about {:.1} GiB to read ({JSON_BYTES_PER_FILE_BYTE} per \
+                 byte), more than the memory limit of {:.1} GiB (8 GiB or half the machine's \
+                 memory); give the queries as a {{\"grid\"}} (README, Reliability)",
+                (len.saturating_mul(JSON_BYTES_PER_FILE_BYTE)) as f64 / (1u64 << 30) as f64,
+                limit as f64 / (1u64 << 30) as f64
+            ),
+        });
+    }
+    let text = std::fs::read_to_string(path).map_err(io)?;
     json::parse(&text, path)
+}
+
+/// Queries evaluated per chunk by `scratchwave table` (80 B each: 20 MiB of queries, 1 MiB
+/// of values, ~4 MiB of text per chunk).
+const TABLE_CHUNK: usize = 1 << 18;
+
+/// `scratchwave table` on one backend: the queries (listed or a grid) are evaluated and
+/// written in chunks of [`TABLE_CHUNK`], so memory does not grow with the query count beyond
+/// the spec itself. The input was checked whole before anything is written; if the backend
+/// fails after the first chunk, the output so far stays on stdout and the exit code is 1.
+fn stream_table(s: spec::TableStream, b: &dyn TableBackend) -> Result<ExitCode, Failure> {
+    use std::io::Write as _;
+    let spec::TableStream { mut batch, grid } = s;
+    let listed = std::mem::take(&mut batch.queries);
+    let total = grid.as_ref().map_or(listed.len() as u64, |g| g.len());
+    let stdout = std::io::stdout();
+    let mut out = std::io::BufWriter::with_capacity(1 << 20, stdout.lock());
+    let mut text = String::with_capacity(TABLE_CHUNK * 16);
+    let mut start = 0u64;
+    while start < total {
+        match &grid {
+            Some(g) => g.fill(start, TABLE_CHUNK, &mut batch.queries),
+            None => {
+                let end = (start as usize + TABLE_CHUNK).min(listed.len());
+                batch.queries.clear();
+                batch
+                    .queries
+                    .extend_from_slice(&listed[start as usize..end]);
+            }
+        }
+        let values = b.evaluate(&batch).map_err(Failure::Backend)?;
+        text.clear();
+        for v in values {
+            text += &g9(f64::from(v));
+            text.push('\n');
+        }
+        out.write_all(text.as_bytes())
+            .map_err(|e| Failure::Output(e.to_string()))?;
+        start += batch.queries.len() as u64;
+    }
+    out.flush().map_err(|e| Failure::Output(e.to_string()))?;
+    Ok(ExitCode::SUCCESS)
 }
 
 fn one_file<'a>(pos: &[&'a str], cmd: &str) -> Result<&'a str, Failure> {
@@ -110,19 +180,14 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             let (pos, flags) = parse_flags(rest, &["backend"])?;
             let file = one_file(&pos, "table")?;
             let which = flag(&flags, "backend").unwrap_or("cpu");
-            let s = spec::table_spec(&read_json(file)?)?;
+            let v = read_json(file)?;
             if which == "all" {
-                return table_all(&s);
+                return table_all(&spec::table_spec(&v)?);
             }
+            let s = spec::table_stream(&v)?;
+            drop(v);
             let b = backends::by_name(which).map_err(|e| Failure::Usage(e.to_string()))?;
-            let values = b.evaluate(&s).map_err(Failure::Backend)?;
-            let mut out = String::with_capacity(values.len() * 16);
-            for v in values {
-                out += &g9(f64::from(v));
-                out.push('\n');
-            }
-            print!("{out}");
-            Ok(ExitCode::SUCCESS)
+            stream_table(s, b.as_ref())
         }
         "light" => {
             let (pos, flags) = parse_flags(rest, &["backend"])?;

@@ -165,3 +165,32 @@ pub fn physical_material(m: &Material) -> Material {
         ..*m
     }
 }
+
+/// Asserts a scratch segment as the readers promise it: finite, a unit tangent (or a zero
+/// one on a zero-length segment), sizes ≥ 0.
+#[track_caller]
+pub fn check_segment(s: &Scratch) {
+    let t2 = s.tangent[0] * s.tangent[0] + s.tangent[1] * s.tangent[1];
+    assert!(
+        s.center.iter().all(|c| c.is_finite())
+            && s.half_len.is_finite()
+            && s.half_len >= 0.0
+            && s.width.is_finite()
+            && s.width >= 0.0
+            && s.depth.is_finite()
+            && s.depth >= 0.0
+            && ((t2 - 1.0).abs() < 1.0e-5 || (s.half_len == 0.0 && t2 <= 1.0 + 1.0e-5)),
+        "{s:?}"
+    );
+}
+
+/// A per-process temporary directory for the files a fuzz input carries (scratch files,
+/// OBJ meshes), created once.
+pub fn work_dir() -> &'static std::path::Path {
+    static DIR: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("scratchwave-fuzz-{}", std::process::id()));
+        std::fs::create_dir_all(&d).expect("temp dir");
+        d
+    })
+}

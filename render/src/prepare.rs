@@ -52,6 +52,10 @@ impl Prepared {
     }
 }
 
+/// Bytes per scratch segment in [`estimate_bytes`]: the segment (64 B), its BVH nodes and
+/// ids, twice while building, and at most [`GRID_ENTRIES_PER_SCRATCH`] `u32` grid entries.
+pub const SCRATCH_BYTES: u64 = 2 * (64 + 64 + 8) + 4 * GRID_ENTRIES_PER_SCRATCH;
+
 /// Bytes the preparation and the image of `scene` will take, estimated before allocating
 /// (triangles with BVH nodes and ids, scratch lookups, image buffers).
 pub fn estimate_bytes(scene: &Scene) -> u64 {
@@ -69,11 +73,8 @@ pub fn estimate_bytes(scene: &Scene) -> u64 {
         .map(|m| m.scratches.len() as u64)
         .sum();
     let pixels = u64::from(scene.camera.width_px) * u64::from(scene.camera.height_px);
-    // Triangle 36 B + BVH node 32 B ×2 + ids, twice (build copy); scratches 64 B + nodes;
-    // the scratch grids at most GRID_ENTRIES_PER_SCRATCH u32 entries per scratch.
-    tris * 2 * (36 + 64 + 8 + 24)
-        + scratches * (2 * (64 + 64 + 8) + 4 * GRID_ENTRIES_PER_SCRATCH)
-        + pixels * (12 + 12 + 4)
+    // Triangle 36 B + BVH node 32 B ×2 + ids, twice (build copy).
+    tris * 2 * (36 + 64 + 8 + 24) + scratches * SCRATCH_BYTES + pixels * (12 + 12 + 4)
 }
 
 /// Builds the preparation of `scene`.

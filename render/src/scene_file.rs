@@ -1,7 +1,7 @@
 //! The scene file (JSON) → [`Scene`]. Every rejection is a [`SpecError`] naming the JSON
 //! path (`objects[2].size[0]`); the format is documented in `docs/render.md`.
 
-use crate::prepare::{estimate_bytes, triangulate};
+use crate::prepare::{SCRATCH_BYTES, estimate_bytes, triangulate};
 use crate::scene::{
     DEFAULT_UNIT_UM, Footprint, LightDef, Lookup, Object, RenderSettings, Scene, SceneMaterial,
     Shadows, Shape, Spectrum,
@@ -94,8 +94,23 @@ fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// Reads a scene from a JSON value; `base_dir` resolves relative file names.
+/// Reads a scene from a JSON value; `base_dir` resolves relative file names. The memory
+/// limit is [`memory_limit_bytes`].
 pub fn scene_from_value(v: &Value, name: &str, base_dir: &Path) -> Result<Scene, SpecError> {
+    scene_from_value_with_limit(v, name, base_dir, memory_limit_bytes())
+}
+
+/// [`scene_from_value`] with a caller's memory limit (bytes; the fuzz targets pass a small
+/// one). The scratch sources of all materials together get a segment budget of
+/// `limit_bytes / SCRATCH_BYTES` (at most `MAX_SEGMENTS` of `scratchwave_host::pattern`), checked
+/// before the segments are allocated; the whole scene's estimate
+/// ([`estimate_bytes`]) is checked against `limit_bytes` after reading.
+pub fn scene_from_value_with_limit(
+    v: &Value,
+    name: &str,
+    base_dir: &Path,
+    limit_bytes: u64,
+) -> Result<Scene, SpecError> {
     let top = Obj::new(
         v,
         "",
@@ -124,7 +139,8 @@ pub fn scene_from_value(v: &Value, name: &str, base_dir: &Path) -> Result<Scene,
         None => DEFAULT_UNIT_UM,
     };
     let camera = camera(top.req("camera")?)?;
-    let (materials, by_name) = materials(top.req("materials")?, base_dir)?;
+    let segment_budget = usize::try_from(limit_bytes / SCRATCH_BYTES).unwrap_or(usize::MAX);
+    let (materials, by_name) = materials(top.req("materials")?, base_dir, segment_budget)?;
     let objects = objects(&top, &by_name, base_dir)?;
     let lights = lights(&top)?;
     let spectrum = spectrum(top.get("spectrum"))?;
@@ -140,7 +156,7 @@ pub fn scene_from_value(v: &Value, name: &str, base_dir: &Path) -> Result<Scene,
         settings,
     };
     let need = estimate_bytes(&scene);
-    let limit = memory_limit_bytes();
+    let limit = limit_bytes;
     if need > limit {
         return Err(SpecError::field(
             largest_consumer(&scene),
@@ -171,7 +187,7 @@ fn largest_consumer(scene: &Scene) -> String {
         }
     }
     for m in &scene.materials {
-        let b = m.scratches.len() as u64 * 272;
+        let b = m.scratches.len() as u64 * SCRATCH_BYTES;
         if b > best.0 {
             best = (b, format!("materials.{}.scratches", m.name));
         }
@@ -249,17 +265,23 @@ fn camera(v: &Value) -> Result<Camera, SpecError> {
     Ok(cam)
 }
 
-/// The scratches of a scratch-model material at `path` (an inline list today; the one
-/// place that reads a material's `"scratches"`).
 /// A material's `"scratches"`: a list of sources (inline scratches, `{"file"}`,
-/// `{"generate"}`; `docs/scratches.md`), files relative to the scene's directory.
-fn material_scratches(v: &Value, path: &str, base_dir: &Path) -> Result<Vec<Scratch>, SpecError> {
-    scratchwave_spec::scratches::scratch_sources(v, path, base_dir)
+/// `{"generate"}`; `docs/scratches.md`), files relative to the scene's directory; at most
+/// `budget` segments.
+fn material_scratches(
+    v: &Value,
+    path: &str,
+    base_dir: &Path,
+    budget: usize,
+) -> Result<Vec<Scratch>, SpecError> {
+    scratchwave_spec::scratches::scratch_sources_with_limit(v, path, base_dir, budget)
 }
 
+/// The materials; `budget` scratch segments for all of them together.
 fn materials(
     v: &Value,
     base_dir: &Path,
+    mut budget: usize,
 ) -> Result<(Vec<SceneMaterial>, HashMap<String, usize>), SpecError> {
     let map = v
         .as_object()
@@ -314,7 +336,8 @@ fn materials(
                 spec::options(o, &m.path_of("options"), tm, &mut shade.table)?;
             }
             if let Some(s) = m.get("scratches") {
-                scratches = material_scratches(s, &m.path_of("scratches"), base_dir)?;
+                scratches = material_scratches(s, &m.path_of("scratches"), base_dir, budget)?;
+                budget -= scratches.len().min(budget);
             }
             if let Some(b) = m.get("base") {
                 let bp = m.path_of("base");
@@ -355,10 +378,19 @@ fn materials(
 /// Largest mesh (triangles).
 pub const MAX_MESH_TRIANGLES: usize = 1 << 26;
 
+/// Largest OBJ file (bytes).
+pub const MAX_MESH_FILE_BYTES: u64 = 1 << 30;
+
 /// `{"shape": "mesh", "file", "uv_um", "material"}`: an OBJ file (relative to the scene's
 /// directory) read with `tobj`, triangulated, one index per vertex (positions and texture
 /// coordinates); every vertex needs texture coordinates.
+///
+/// The file must be a regular file of at most [`MAX_MESH_FILE_BYTES`] (a device such as
+/// `/dev/zero` or a FIFO would never end); it is read whole, then parsed from memory.
+/// `mtllib` lines are ignored: materials come from the scene, and a material library path
+/// is another file a hostile OBJ could point at a device.
 fn read_mesh(o: &Obj, base_dir: &Path) -> Result<Shape, SpecError> {
+    use std::io::Read as _;
     let fp = o.path_of("file");
     let name = o
         .req("file")?
@@ -366,15 +398,41 @@ fn read_mesh(o: &Obj, base_dir: &Path) -> Result<Shape, SpecError> {
         .ok_or_else(|| SpecError::field(&fp, "expected a file name"))?;
     let file = base_dir.join(name);
     let uv_um = pos(o, "uv_um", false)?;
-    let (models, _) = tobj::load_obj(
-        &file,
+    let cannot = |e: &dyn std::fmt::Display| {
+        SpecError::field(&fp, format!("cannot read mesh {}: {e}", file.display()))
+    };
+    let meta = std::fs::metadata(&file).map_err(|e| cannot(&e))?;
+    if !meta.is_file() {
+        return Err(cannot(&"not a regular file"));
+    }
+    if meta.len() > MAX_MESH_FILE_BYTES {
+        return Err(cannot(&format_args!(
+            "{} bytes, more than the limit of {MAX_MESH_FILE_BYTES} (MAX_MESH_FILE_BYTES)",
+            meta.len()
+        )));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(&file)
+        .and_then(|f| f.take(MAX_MESH_FILE_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(|e| cannot(&e))?;
+    if bytes.len() as u64 > MAX_MESH_FILE_BYTES {
+        return Err(cannot(&format_args!(
+            "more than the limit of {MAX_MESH_FILE_BYTES} bytes (MAX_MESH_FILE_BYTES)"
+        )));
+    }
+    if let Some(msg) = bad_face_index(&bytes) {
+        return Err(cannot(&msg));
+    }
+    let (models, _) = tobj::load_obj_buf(
+        &mut std::io::Cursor::new(bytes),
         &tobj::LoadOptions {
             triangulate: true,
             single_index: true,
             ..tobj::LoadOptions::default()
         },
+        |_| Err(tobj::LoadError::OpenFileFailed),
     )
-    .map_err(|e| SpecError::field(&fp, format!("cannot read mesh {}: {e}", file.display())))?;
+    .map_err(|e| cannot(&e))?;
     let (mut vertices, mut indices, mut uvs) = (Vec::new(), Vec::new(), Vec::new());
     for m in &models {
         let mesh = &m.mesh;
@@ -433,6 +491,64 @@ fn read_mesh(o: &Obj, base_dir: &Path) -> Result<Shape, SpecError> {
         uvs,
         uv_um,
     })
+}
+
+/// The first face (`f`) or line (`l`) index of an OBJ text that names no element: a
+/// positive index past the file's count of positions / texture coordinates / normals, or a
+/// negative (relative) one reaching before the first. `tobj` 4.0.5 resolves such an index
+/// to a huge `usize` and multiplies it unchecked (`vt * 2 + 1`): an overflow panic with
+/// overflow checks, a silently wrapped (wrong) texture coordinate without (found by the
+/// `obj_mesh` fuzz target).
+fn bad_face_index(obj: &[u8]) -> Option<String> {
+    const KINDS: [&str; 3] = ["v", "vt", "vn"];
+    let lines = || {
+        obj.split(|&b| b == b'\n')
+            .map(|l| std::str::from_utf8(l).unwrap_or(""))
+    };
+    let mut total = [0usize; 3];
+    for l in lines() {
+        if let Some(k) = l
+            .split_whitespace()
+            .next()
+            .and_then(|w| KINDS.iter().position(|&x| x == w))
+        {
+            total[k] += 1;
+        }
+    }
+    let mut seen = [0usize; 3];
+    for (n, l) in lines().enumerate() {
+        let mut words = l.split_whitespace();
+        let first = words.next();
+        if let Some(k) = first.and_then(|w| KINDS.iter().position(|&x| x == w)) {
+            seen[k] += 1;
+            continue;
+        }
+        if !matches!(first, Some("f" | "l")) {
+            continue;
+        }
+        for w in words {
+            for (k, part) in w.split('/').take(3).enumerate() {
+                let Ok(x) = part.parse::<isize>() else {
+                    continue;
+                };
+                let ok = if x < 0 {
+                    x.unsigned_abs() <= seen[k]
+                } else {
+                    x.unsigned_abs() <= total[k]
+                };
+                if !ok {
+                    return Some(format!(
+                        "line {}: {} index {x} names no element ({} so far, {} in the file)",
+                        n + 1,
+                        KINDS[k],
+                        seen[k],
+                        total[k]
+                    ));
+                }
+            }
+        }
+    }
+    None
 }
 
 fn objects(

@@ -5,11 +5,13 @@
 //!
 //! - [`json`]: the field-checking object reader and number conversions;
 //! - [`spec`]: table and footprint specs → the batches of `scratchwave-host`;
+//! - [`light`]: the light spec of `scratchwave light` → kernel light records;
 //! - [`scratches`]: a material's scratch sources (inline, files, seeded patterns) → scratch
 //!   segments (formats in `docs/scratches.md`).
 
 pub mod error;
 pub mod json;
+pub mod light;
 pub mod scratches;
 pub mod spec;
 

@@ -16,8 +16,125 @@ use serde_json::Value;
 /// Default coherence σ (µm): δc = 6σ = 60 µm (Werner §4.1).
 pub const DEFAULT_SIGMA_UM: f32 = 10.0;
 
-/// Reads a table spec from a JSON value.
+/// Largest number of queries [`table_spec`] expands a `{"grid"}` into (2²², 320 MiB of
+/// [`TableQuery`] records); larger grids are for [`table_stream`], which `scratchwave table`
+/// uses.
+pub const MAX_EXPANDED_QUERIES: u64 = 1 << 22;
+
+/// Largest number of queries of a `{"grid"}` (2⁴⁰; streamed, so this bounds time, not memory).
+pub const MAX_GRID_QUERIES: u64 = 1 << 40;
+
+/// `"queries": {"grid": {"wi": [...], "wo": [...], "lambda_nm": [...], "x": [...]}}`: every
+/// combination of the listed values, `wi` outermost, then `wo`, `lambda_nm`, and `x`
+/// innermost (`x` optional for model `ghs`); each with the spec's material. Queries are made
+/// on demand ([`QueryGrid::fill`]), so a grid of 10⁷ queries costs no memory until a chunk of
+/// it is evaluated.
+#[derive(Clone, Debug, PartialEq)]
+pub struct QueryGrid {
+    /// Incident directions (unit).
+    pub wi: Vec<[f32; 3]>,
+    /// Outgoing directions (unit).
+    pub wo: Vec<[f32; 3]>,
+    /// Wavelengths (nm).
+    pub lambda_nm: Vec<f32>,
+    /// Shading points (µm).
+    pub x: Vec<[f32; 2]>,
+    /// The material of every query.
+    pub material: Material,
+}
+
+impl QueryGrid {
+    /// Number of queries (the product of the list lengths; at most [`MAX_GRID_QUERIES`]).
+    pub fn len(&self) -> u64 {
+        [
+            self.wi.len(),
+            self.wo.len(),
+            self.lambda_nm.len(),
+            self.x.len(),
+        ]
+        .iter()
+        .fold(1u64, |a, &n| a.saturating_mul(n as u64))
+    }
+
+    /// Whether the grid has no query (never, for a grid read by [`table_stream`]).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Query `i` (`i < len()`), in the order documented on [`QueryGrid`].
+    pub fn query(&self, i: u64) -> TableQuery {
+        let n = |v: usize| v as u64;
+        let ix = (i % n(self.x.len())) as usize;
+        let i = i / n(self.x.len());
+        let il = (i % n(self.lambda_nm.len())) as usize;
+        let i = i / n(self.lambda_nm.len());
+        let io = (i % n(self.wo.len())) as usize;
+        let ii = (i / n(self.wo.len())) as usize;
+        TableQuery {
+            wi: self.wi[ii],
+            lambda_nm: self.lambda_nm[il],
+            wo: self.wo[io],
+            x: self.x[ix],
+            material: self.material,
+            ..TableQuery::default()
+        }
+    }
+
+    /// Replaces `out` with queries `start..min(start + n, len())`.
+    pub fn fill(&self, start: u64, n: usize, out: &mut Vec<TableQuery>) {
+        out.clear();
+        let end = self.len().min(start.saturating_add(n as u64));
+        out.extend((start..end).map(|i| self.query(i)));
+    }
+}
+
+/// A table spec as `scratchwave table` streams it: the batch (model, options, scratches,
+/// materials) and its queries, listed in `batch.queries` or, for a `{"grid"}`, in `grid`
+/// (then `batch.queries` is empty).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TableStream {
+    /// Everything but a grid's queries.
+    pub batch: TableBatch,
+    /// The grid, if the spec gives one.
+    pub grid: Option<QueryGrid>,
+}
+
+impl TableStream {
+    /// Number of queries.
+    pub fn len(&self) -> u64 {
+        self.grid
+            .as_ref()
+            .map_or(self.batch.queries.len() as u64, QueryGrid::len)
+    }
+
+    /// Whether there is no query.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// Reads a table spec from a JSON value, with every query in `queries` (a grid is expanded:
+/// at most [`MAX_EXPANDED_QUERIES`], else an error naming `queries.grid` and the limit).
 pub fn table_spec(v: &Value) -> Result<TableBatch, SpecError> {
+    let TableStream { mut batch, grid } = table_stream(v)?;
+    if let Some(g) = grid {
+        let n = g.len();
+        if n > MAX_EXPANDED_QUERIES {
+            return Err(SpecError::field(
+                "queries.grid",
+                format!(
+                    "{n} queries, more than the {MAX_EXPANDED_QUERIES} (MAX_EXPANDED_QUERIES) \
+                     this reader expands; `scratchwave table` streams grids of any size"
+                ),
+            ));
+        }
+        g.fill(0, n as usize, &mut batch.queries);
+    }
+    Ok(batch)
+}
+
+/// Reads a table spec from a JSON value; a `{"grid"}` of queries stays a [`QueryGrid`].
+pub fn table_stream(v: &Value) -> Result<TableStream, SpecError> {
     let top = Obj::new(
         v,
         "",
@@ -53,13 +170,16 @@ pub fn table_spec(v: &Value) -> Result<TableBatch, SpecError> {
     if let Some(o) = top.get("options") {
         options(o, &top.path_of("options"), model, &mut params)?;
     }
-    let queries = queries(&top, true, Some(material))?;
-    Ok(TableBatch {
-        params,
-        scratches,
-        queries,
-        default_material: material,
-        ghs: None,
+    let (queries, grid) = queries(&top, true, Some(material))?;
+    Ok(TableStream {
+        batch: TableBatch {
+            params,
+            scratches,
+            queries,
+            default_material: material,
+            ghs: None,
+        },
+        grid,
     })
 }
 
@@ -91,9 +211,105 @@ pub fn options(
     Ok(())
 }
 
-/// The queries of a table; `x` is required when `need_x`, a per-query material is allowed
-/// when `material` is the spec's default.
+/// The queries of a table: a list, or a `{"grid"}`; `x` is required when `need_x`, a
+/// per-query material is allowed when `material` is the spec's default.
 fn queries(
+    top: &Obj,
+    need_x: bool,
+    material: Option<Material>,
+) -> Result<(Vec<TableQuery>, Option<QueryGrid>), SpecError> {
+    if top.get("queries").is_some_and(Value::is_object) {
+        let g = grid(top, need_x, material)?;
+        return Ok((Vec::new(), Some(g)));
+    }
+    Ok((query_list(top, need_x, material)?, None))
+}
+
+/// `queries.grid`: four lists (see [`QueryGrid`]), each entry checked like the field of a
+/// listed query.
+fn grid(top: &Obj, need_x: bool, material: Option<Material>) -> Result<QueryGrid, SpecError> {
+    let q = Obj::new(top.req("queries")?, "queries", &["grid"])?;
+    let g = Obj::new(
+        q.req("grid")?,
+        "queries.grid",
+        &["wi", "wo", "lambda_nm", "x"],
+    )?;
+    let list = |key: &str| -> Result<&Vec<Value>, SpecError> {
+        let a = g.arr(key)?;
+        if a.is_empty() {
+            return Err(SpecError::field(g.path_of(key), "must not be empty"));
+        }
+        Ok(a)
+    };
+    let dirs = |key: &str| -> Result<Vec<[f32; 3]>, SpecError> {
+        list(key)?
+            .iter()
+            .enumerate()
+            .map(|(i, d)| {
+                let one = serde_json::json!({ "d": d });
+                let path = format!("{}[{i}]", g.path_of(key));
+                direction(&Obj::new(&one, "", &["d"])?, "d").map_err(|e| rename(e, &path))
+            })
+            .collect()
+    };
+    let wi = dirs("wi")?;
+    let wo = dirs("wo")?;
+    let lambda_nm = list("lambda_nm")?
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            let path = format!("{}[{i}]", g.path_of("lambda_nm"));
+            json::positive(json::number(l, &path)?, &path, false)
+        })
+        .collect::<Result<Vec<f32>, SpecError>>()?;
+    let x = if need_x || g.get("x").is_some() {
+        list("x")?
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let path = format!("{}[{i}]", g.path_of("x"));
+                let p = json::numbers::<2>(p, &path)?;
+                Ok([json::to_f32(p[0], &path)?, json::to_f32(p[1], &path)?])
+            })
+            .collect::<Result<Vec<[f32; 2]>, SpecError>>()?
+    } else {
+        vec![[0.0; 2]]
+    };
+    let grid = QueryGrid {
+        wi,
+        wo,
+        lambda_nm,
+        x,
+        material: material.unwrap_or_default(),
+    };
+    let n = [
+        grid.wi.len(),
+        grid.wo.len(),
+        grid.lambda_nm.len(),
+        grid.x.len(),
+    ]
+    .iter()
+    .map(|&n| n as f64)
+    .product::<f64>();
+    if n > MAX_GRID_QUERIES as f64 {
+        return Err(SpecError::field(
+            "queries.grid",
+            format!("{n:e} queries, more than the limit of {MAX_GRID_QUERIES} (MAX_GRID_QUERIES)"),
+        ));
+    }
+    Ok(grid)
+}
+
+/// A field error of a value read under a stand-in path, moved to `path`.
+fn rename(e: SpecError, path: &str) -> SpecError {
+    match e {
+        SpecError::Field { msg, .. } => SpecError::field(path, msg),
+        other => other,
+    }
+}
+
+/// A listed `queries` array.
+fn query_list(
     top: &Obj,
     need_x: bool,
     material: Option<Material>,
@@ -134,7 +350,7 @@ fn queries(
 
 /// Model `ghs` (Holzschuch & Pacanowski): the material carries the surface statistics; there
 /// are no scratches, σ or options.
-fn ghs_table_spec(top: &Obj) -> Result<TableBatch, SpecError> {
+fn ghs_table_spec(top: &Obj) -> Result<TableStream, SpecError> {
     for key in ["sigma_um", "options"] {
         if top.get(key).is_some() {
             return Err(SpecError::field(
@@ -152,16 +368,19 @@ fn ghs_table_spec(top: &Obj) -> Result<TableBatch, SpecError> {
         ));
     }
     let ghs = ghs_material(top.req("material")?, &top.path_of("material"))?;
-    let queries = queries(top, false, None)?;
-    Ok(TableBatch {
-        params: TableParams {
-            model: GHS_MODEL_ID,
-            ..TableParams::default()
+    let (queries, grid) = queries(top, false, None)?;
+    Ok(TableStream {
+        batch: TableBatch {
+            params: TableParams {
+                model: GHS_MODEL_ID,
+                ..TableParams::default()
+            },
+            scratches: Vec::new(),
+            queries,
+            default_material: Material::default(),
+            ghs: Some(ghs),
         },
-        scratches: Vec::new(),
-        queries,
-        default_material: Material::default(),
-        ghs: Some(ghs),
+        grid,
     })
 }
 
