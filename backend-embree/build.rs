@@ -24,13 +24,14 @@ fn main() {
         .iter()
         .map(|sub| dir.join(sub).join(LIBRARY))
         .collect();
-    for candidate in &candidates {
-        // Also re-runs once a missing library appears.
-        println!("cargo:rerun-if-changed={}", candidate.display());
-    }
     let Some(library) = candidates.iter().find(|p| p.is_file()) else {
+        // A failed build script runs again on the next build, so a library fetched later
+        // is found then.
         fail(&dir, from_env, workspace);
     };
+    // Watch only the library found: cargo treats a watched path that does not exist as
+    // changed, which would rerun this script (and rebuild every dependent) on every build.
+    println!("cargo:rerun-if-changed={}", library.display());
     let library = std::path::absolute(library).unwrap_or_else(|_| library.clone());
     println!(
         "cargo:rustc-env=SCRATCHWAVE_EMBREE_LIBRARY={}",

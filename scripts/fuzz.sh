@@ -37,22 +37,6 @@ if [ "$(cargo fuzz --version 2>/dev/null || true)" != "cargo-fuzz $CARGO_FUZZ_VE
 fi
 
 export CARGO_TARGET_DIR=${FUZZ_TARGET_DIR:-$PWD/fuzz/target}
-# backend-embree's build script (linked through the renderer, never called by a target)
-# asks cargo to watch three candidate paths of the library; a missing one makes cargo rerun
-# it and rebuild the renderer and every target on each build (~3 min here). Point the fuzz
-# build at a directory where all three exist, as links to the one library.
-embree_src=${EMBREE_DIR:-$PWD/.deps/embree}
-for lib in "$embree_src/lib" "$embree_src/lib64" "$embree_src"; do
-  if [ -f "$lib/libembree4.so.4" ]; then
-    EMBREE_DIR=$CARGO_TARGET_DIR/embree-links
-    mkdir -p "$EMBREE_DIR/lib" "$EMBREE_DIR/lib64"
-    for d in "$EMBREE_DIR/lib" "$EMBREE_DIR/lib64" "$EMBREE_DIR"; do
-      ln -sf "$(cd "$lib" && pwd)/libembree4.so.4" "$d/libembree4.so.4"
-    done
-    export EMBREE_DIR
-    break
-  fi
-done
 log "building the fuzz targets (nightly, ASan, debug assertions)"
 cargo "+$NIGHTLY" fuzz build --debug-assertions
 # The targets run straight from the build directory, as `cargo fuzz run` would run them

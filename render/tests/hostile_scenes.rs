@@ -4,6 +4,7 @@
 //! than the memory limit allows. Each is a typed error naming the field, or (for `mtllib`,
 //! which is ignored) a normal read, and none allocates beyond the limit.
 
+use scratchwave_render::prepare::SCRATCH_BYTES;
 use scratchwave_render::scene::Shape;
 use scratchwave_render::scene_file::{MAX_MESH_FILE_BYTES, scene_from_value_with_limit};
 use scratchwave_spec::SpecError;
@@ -84,7 +85,7 @@ fn mesh_file_over_the_size_limit_is_rejected_before_reading() {
 
 #[test]
 fn scratch_segments_of_all_materials_share_one_budget() {
-    // 3 materials × 400 segments against a limit worth 1000 segments (272 bytes each): the
+    // 3 materials × 400 segments against a limit worth 1000 segments (`SCRATCH_BYTES` each): the
     // third material's pattern is refused before it is generated.
     let generate = |seed: u64| {
         json!([{"generate": {"seed": seed, "count": 400, "region": {"min": [0, 0], "max": [1000, 1000]},
@@ -100,11 +101,16 @@ fn scratch_segments_of_all_materials_share_one_budget() {
         "m2": {"model": "werner", "scratches": generate(3)},
     });
     let d = dir("budget");
-    let (path, msg) = field_error(scene_from_value_with_limit(&v, "t", &d, 272 * 1000));
+    let (path, msg) = field_error(scene_from_value_with_limit(
+        &v,
+        "t",
+        &d,
+        SCRATCH_BYTES * 1000,
+    ));
     assert_eq!(path, "materials.m2.scratches[0].generate");
     assert!(msg.contains("200"), "{msg}");
     // With room for all three the same scene is read.
-    let s = scene_from_value_with_limit(&v, "t", &d, 272 * 1300).unwrap();
+    let s = scene_from_value_with_limit(&v, "t", &d, SCRATCH_BYTES * 1300).unwrap();
     assert_eq!(
         s.materials.iter().map(|m| m.scratches.len()).sum::<usize>(),
         1200
