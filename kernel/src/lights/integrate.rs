@@ -524,8 +524,8 @@ fn extent_power(
 /// [`EXTENT_SDS`] with a margin for rounding (every band rule stays within 4.5).
 const REJECT_SDS: f32 = 4.6;
 
-/// Whether the light can meet a band of the scratch within [`REJECT_SDS`] standard
-/// deviations `sd` of the central band ξ₁ = 0 (the test [`extent_power`] starts with,
+/// Whether the light can meet a band of the scratch within 4.6 standard deviations `sd`
+/// of the central band ξ₁ = 0 (the test the extent rule starts with,
 /// done once for all wavelengths at the widest `sd`). `false` means every band rule gives
 /// 0 for this scratch at every `sd` up to this one.
 #[inline]

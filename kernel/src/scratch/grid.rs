@@ -84,9 +84,7 @@ impl ScratchSet for ScratchGrid<'_> {
         while cursor.slot < cursor.end {
             let k = cursor.slot as usize;
             cursor.slot += 1;
-            let Some(&i) = self.items.get(k) else {
-                return None;
-            };
+            let &i = self.items.get(k)?;
             if let Some(&s) = self.bvh.scratches.get(i as usize)
                 && s.distance_to(x0) <= radius
             {
