@@ -7,6 +7,7 @@
 //! Accepted segments must be finite with a unit tangent and non-negative sizes.
 #![no_main]
 
+use scratchwave_fuzz::check_segment;
 use libfuzzer_sys::fuzz_target;
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -41,17 +42,6 @@ fuzz_target!(|data: &[u8]| {
     };
     assert!(out.len() <= LIMIT, "{} segments", out.len());
     for s in &out {
-        let t2 = s.tangent[0] * s.tangent[0] + s.tangent[1] * s.tangent[1];
-        assert!(
-            s.center.iter().all(|c| c.is_finite())
-                && s.half_len.is_finite()
-                && s.half_len >= 0.0
-                && s.width.is_finite()
-                && s.width >= 0.0
-                && s.depth.is_finite()
-                && s.depth >= 0.0
-                && ((t2 - 1.0).abs() < 1.0e-5 || (s.half_len == 0.0 && t2 <= 1.0 + 1.0e-5)),
-            "{s:?}"
-        );
+        check_segment(s);
     }
 });
