@@ -7,8 +7,8 @@
 //! Accepted segments must be finite with a unit tangent and non-negative sizes.
 #![no_main]
 
-use scratchwave_fuzz::check_segment;
 use libfuzzer_sys::fuzz_target;
+use scratchwave_fuzz::check_segment;
 use std::path::PathBuf;
 use std::sync::OnceLock;
 
