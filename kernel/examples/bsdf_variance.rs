@@ -13,7 +13,9 @@ use scratchwave_kernel::material::Material;
 use scratchwave_kernel::sampling::warp;
 use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
 
-const N: usize = 200_000;
+const N: usize = 100_000;
+/// Samples for the footprint case (each `eval` averages every scratch over the footprint).
+const N_FOOTPRINT: usize = 10_000;
 
 /// SplitMix64, uniform f32 in [0, 1).
 struct Rng(u64);
@@ -54,18 +56,18 @@ fn random_scratches(r: &mut Rng, n: usize, sigma: f32, profile: Option<Profile>)
         .collect()
 }
 
-fn stats(mut draw: impl FnMut(&mut Rng) -> f64, seed: u64) -> (f64, f64, f64) {
+fn stats(n: usize, mut draw: impl FnMut(&mut Rng) -> f64, seed: u64) -> (f64, f64, f64) {
     let mut r = Rng(seed);
     let (mut s1, mut s2) = (0.0, 0.0);
     let t = std::time::Instant::now();
-    for _ in 0..N {
+    for _ in 0..n {
         let w = draw(&mut r);
         s1 += w;
         s2 += w * w;
     }
-    let ns = t.elapsed().as_secs_f64() * 1e9 / N as f64;
-    let mean = s1 / N as f64;
-    (mean, s2 / N as f64 - mean * mean, ns)
+    let ns = t.elapsed().as_secs_f64() * 1e9 / n as f64;
+    let mean = s1 / n as f64;
+    (mean, s2 / n as f64 - mean * mean, ns)
 }
 
 fn main() {
@@ -167,7 +169,13 @@ fn main() {
         let th = theta.to_radians();
         let wo = Vec3::new(th.sin(), 0.0, th.cos());
         let seed = 100 + k as u64;
+        let n = if sp.footprint().is_some() {
+            N_FOOTPRINT
+        } else {
+            N
+        };
         let uniform = stats(
+            n,
             |r| {
                 let (u1, u2) = (r.f(), r.f());
                 let z = u1;
@@ -182,6 +190,7 @@ fn main() {
             seed,
         );
         let cosine = stats(
+            n,
             |r| {
                 let wi = warp::cosine_hemisphere(Vec2::new(r.f(), r.f()));
                 if !(wi.z > 0.0) {
@@ -194,6 +203,7 @@ fn main() {
         );
         let strat = |s: Strategy| {
             stats(
+                n,
                 |r| {
                     let (us, u) = (r.f(), Vec2::new(r.f(), r.f()));
                     bsdf::sample_with(s, m, sp, wo, &wl, us, u, &lk)

@@ -87,14 +87,18 @@ fn integrate(f: impl Fn(f32) -> f32, a: f32, b: f32) -> f64 {
 #[test]
 fn truncated_lobes_integrate_to_one_and_invert_their_cdf() {
     let mut r = Pcg::new(11);
-    for case in 0..200 {
+    for case in 0..360 {
         let l = lobes(&mut r);
         // Intervals around the lobe, and far in either tail.
-        let (a, b) = match case % 4 {
+        let (m0, s0) = (l.mu[0], l.scale[0]);
+        let (a, b) = match case % 6 {
             0 => (-1.5, 1.5),
             1 => (-1.0 + r.f(), 1.0 + r.f()),
             2 => (5.0, 6.0),
-            _ => (-9.0, -7.5),
+            3 => (-9.0, -7.5),
+            // A few scales into either tail of the first component.
+            4 => (m0 + 3.0 * s0, m0 + 6.0 * s0),
+            _ => (m0 - 9.0 * s0, m0 - 5.0 * s0),
         };
         let mass = l.mass(a, b);
         if !(mass > 1e-30) {

@@ -1,7 +1,8 @@
-//! One-dimensional lobes with closed-form CDF and inverse, truncated to an interval: the
-//! logistic (for Gaussian-like lobes: the coherence window's `exp(−4π²σ²ξ²)`) and the
-//! Cauchy (for the scratch profile's `sinc²`), and mixtures of up to three components of
-//! one kind.
+//! One-dimensional lobes with a CDF and its inverse, truncated to an interval: the Gaussian
+//! (the base response's `exp(−4π²σ²|ξ|²)`, Werner Eq. 16), the logistic (Gaussian-like
+//! lobes with heavier, exponential tails: along a scratch, where a finite segment's ends
+//! widen the window's Gaussian) and the Cauchy (for the scratch profile's `sinc²`), and
+//! mixtures of up to three components of one kind.
 //!
 //! Why these two: `sinc²(πx) (1 + π²x²) = sin²(πx) (1 + 1/(πx)²) ≤ 2`, so a Cauchy of scale
 //! `1/π` bounds the rectangular groove's `|M − P|² ∝ W² sinc²(πWξ₂)` (Werner Eq. 14/26) to
@@ -24,6 +25,10 @@ gpu_enum! {
         Logistic = 0,
         /// Cauchy: `F(z) = ½ + atan(z)/π`.
         Cauchy = 1,
+        /// Gaussian: `F(z) = ½ erfc(−z/√2)`, the small side through the Faddeeva function
+        /// (`erfc x = e^{−x²} w(ix)`), inverted by Acklam's rational approximation and one
+        /// Halley step.
+        Gaussian = 2,
     }
     fallback = Logistic;
 }
@@ -82,6 +87,7 @@ impl Lobe1 {
                 e / (s * (1.0 + e) * (1.0 + e))
             }
             Lobe1Kind::Cauchy => 1.0 / (math::PI * s * (1.0 + z * z)),
+            Lobe1Kind::Gaussian => math::exp(-0.5 * z * z) * (FRAC_1_SQRT_TAU / s),
         }
     }
 
@@ -96,6 +102,13 @@ impl Lobe1 {
                     math::atan(-1.0 / z) * (1.0 / math::PI)
                 } else {
                     0.5 + math::atan(z) * (1.0 / math::PI)
+                }
+            }
+            Lobe1Kind::Gaussian => {
+                if z <= 0.0 {
+                    gauss_tail(-z)
+                } else {
+                    1.0 - gauss_tail(z)
                 }
             }
         }
@@ -113,6 +126,7 @@ impl Lobe1 {
                     math::tan(math::PI * (p - 0.5))
                 }
             }
+            Lobe1Kind::Gaussian => gauss_inv_low(p),
         }
     }
 
@@ -239,4 +253,50 @@ impl Lobe1 {
         let z = if flip { -z } else { z };
         mu + s * z
     }
+}
+
+/// 1/√(2π).
+const FRAC_1_SQRT_TAU: f32 = 0.398_942_280_401_432_7;
+
+/// `1 − Φ(x) = ½ erfc(x/√2)` for `x ≥ 0`, as `½ e^{−x²/2} w(ix/√2)` (no cancellation).
+#[inline]
+fn gauss_tail(x: f32) -> f32 {
+    let y = x * core::f32::consts::FRAC_1_SQRT_2;
+    0.5 * math::exp(-y * y) * math::faddeeva(math::C32::new(0.0, y)).re
+}
+
+/// `Φ⁻¹(p)` for `p ∈ (0, ½]`: P. J. Acklam's rational approximation (relative error
+/// 1.15e-9) refined by one Halley step on [`gauss_tail`].
+#[inline]
+fn gauss_inv_low(p: f32) -> f32 {
+    if !(p > 0.0) {
+        return -14.0;
+    }
+    let x = if p < 0.024_25 {
+        let q = math::sqrt(-2.0 * math::ln(p));
+        (((((-7.784_894e-3 * q - 3.223_964_6e-1) * q - 2.400_758_3) * q - 2.549_732_5) * q
+            + 4.374_664_1)
+            * q
+            + 2.938_163_9)
+            / ((((7.784_695_7e-3 * q + 3.224_671_3e-1) * q + 2.445_134_1) * q + 3.754_408_7) * q
+                + 1.0)
+    } else {
+        let q = p - 0.5;
+        let r = q * q;
+        (((((-3.969_683e1 * r + 2.209_461e2) * r - 2.759_285_1e2) * r + 1.383_577_5e2) * r
+            - 3.066_479_8e1)
+            * r
+            + 2.506_628_3)
+            * q
+            / (((((-5.447_61e1 * r + 1.615_858_4e2) * r - 1.556_989_8e2) * r + 6.680_131_2e1) * r
+                - 1.328_068_2e1)
+                * r
+                + 1.0)
+    };
+    // Halley: e = Φ(x) − p, u = e √(2π) e^{x²/2}.
+    let x = math::min(x, 0.0);
+    let e = gauss_tail(-x) - p;
+    let u = e * math::exp(0.5 * x * x) / FRAC_1_SQRT_TAU;
+    let step = u / (1.0 + 0.5 * x * u);
+    if step.is_finite() { x - step } else { x }
 }

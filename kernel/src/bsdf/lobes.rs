@@ -8,8 +8,8 @@
 //! * [`DiskLobe`] (this crate): a product of two [`Lobe1`]s along orthonormal axes `e1`,
 //!   `e2`; `d·e1` is drawn on the disk's extent along `e1`, then `d·e2` on the chord at that
 //!   `d·e1`, so nothing is drawn below the horizon and the pdf integrates to 1. The base
-//!   response is a logistic product (matching the Gaussian of Werner Eq. 21 in standard
-//!   deviation); a scratch is a logistic along its tangent (the coherence window) times
+//!   response is the Gaussian product of Werner Eq. 21, truncated; a scratch is a logistic
+//!   along its tangent (the coherence window) times
 //!   a Cauchy (mixture) across it (the profile's `sinc²`, Werner Eqs. 14, 26–31).
 //! * [`gaussian_base_sample`]: Werner §5's base sampler verbatim: `ξ` from two normal
 //!   numbers with the standard deviation `1/(√8 πσ)` of Eq. 21, `wi` from Eq. 22, evanescent

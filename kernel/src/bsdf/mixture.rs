@@ -50,7 +50,7 @@ use glam::{Vec2, Vec3};
 gpu_enum! {
     /// Which lobes [`sample_with`] and [`pdf_with`] use.
     pub enum Strategy {
-        /// Disk-product lobes: logistic base, logistic × Cauchy (mixture) per scratch,
+        /// Disk-product lobes: Gaussian base, logistic × Cauchy (mixture) per scratch,
         /// truncated to the hemisphere (this crate; the default).
         DiskProduct = 0,
         /// Werner 2017 §5 as published: Gaussian base (Eq. 21) and the vMF ring of d'Eon
@@ -193,11 +193,12 @@ fn along_xi_std(sigma: f32, half_len: f32) -> f32 {
     math::max(base_xi_std(sigma), short)
 }
 
-/// The disk-product lobe of the base response at `λ` (µm).
+/// The disk-product lobe of the base response at `λ` (µm): the Gaussian of Werner Eq. 21
+/// in each axis, truncated to the hemisphere.
 #[inline]
 fn base_disk_lobe(sigma: f32, lambda: f32) -> DiskLobe {
-    let s = lambda * base_xi_std(sigma) * LOGISTIC_PER_STD;
-    let l = Lobe1::single(Lobe1Kind::Logistic, 0.0, s);
+    let s = lambda * base_xi_std(sigma);
+    let l = Lobe1::single(Lobe1Kind::Gaussian, 0.0, s);
     DiskLobe {
         e1: Vec2::X,
         l1: l,

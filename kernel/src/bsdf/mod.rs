@@ -19,7 +19,12 @@
 //! | `eval` | [`eval`]: every wavelength from one scratch walk |
 //! | `lobe1d` | truncated logistic / Cauchy mixtures (closed-form CDF and inverse) |
 //! | `lobes` | the directional lobes: disk-product lobes (this crate), Werner §5's Gaussian base and vMF ring |
-//! | `mixture` | component weights, [`sample`] and [`pdf`]: balance heuristic over base, scratches and GHS |
+//! | `mixture` | component weights, [`sample`] and [`pdf`]: balance heuristic over base, scratches and GHS, and over the wavelengths |
+
+/// `docs/bsdf.md`, compiled and run as a doc test.
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/bsdf.md")]
+pub struct BsdfGuide;
 
 pub mod eval;
 pub mod frame;
