@@ -157,7 +157,7 @@ fn main() {
     ];
     let wl = Wavelengths::single(550.0);
     println!(
-        "N = {N} samples per cell, σ = {sigma} µm, λ = 550 nm, F = 1; variance per sample of f·cosθi/pdf (estimate of the albedo in brackets)\n"
+        "N = {N} samples per cell ({N_FOOTPRINT} with a footprint), σ = {sigma} µm, λ = 550 nm, F = 1; variance per sample of f·cosθi/pdf (estimate of the albedo in brackets)\n"
     );
     println!(
         "| configuration | uniform | cosine | Werner §5 | disk product | Werner §5 / disk product |"

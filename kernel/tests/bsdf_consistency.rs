@@ -2,6 +2,8 @@
 //! `pdf` at the sampled direction (1e-5 relative), reciprocity where the model is
 //! reciprocal, and the directional albedo of Werner's coherent model (energy: at most F up
 //! to the model's stated error, see `docs/bsdf.md`).
+// Per-wavelength arrays are walked in step by index.
+#![allow(clippy::needless_range_loop)]
 
 mod bsdf_common;
 
@@ -126,7 +128,10 @@ fn albedo(
         s2 += w * w;
     }
     let mean = s1 / n as f64;
-    (mean, ((s2 / n as f64 - mean * mean) / n as f64).sqrt())
+    (
+        mean,
+        ((s2 / n as f64 - mean * mean).max(0.0) / n as f64).sqrt(),
+    )
 }
 
 #[test]

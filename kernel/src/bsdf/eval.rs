@@ -34,21 +34,22 @@ pub fn eval<S: ScratchSet>(
     let wi = direction(wi.to_array());
     let wo = direction(wo.to_array());
     let n = wl.len();
-    let mut out = Spectrum::ZERO;
+    // A plain local array, stored to by run-time index (see `scratch_response_spectral`).
+    let mut vals = [0.0; MAX_SPECTRAL];
     if !(wi.z > 0.0 && wo.z > 0.0) {
-        return out;
+        return Spectrum::ZERO;
     }
     if m.scene_model() == SceneModel::Ghs {
         let mut j = 0;
         while j < MAX_SPECTRAL && j < n {
-            out.v[j] = ghs_value(m, lk.g1, wi, wo, wl.nm[j]);
+            vals[j] = ghs_value(m, lk.g1, wi, wo, wl.nm[j]);
             j += 1;
         }
-        return out;
+        return Spectrum { v: vals };
     }
     let sigma = m.sigma_um;
     if !(sigma > 0.0) {
-        return out;
+        return Spectrum::ZERO;
     }
     let params = m.table_params();
     let model = m.table_model();
@@ -57,7 +58,7 @@ pub fn eval<S: ScratchSet>(
         (SceneModel::Velinov, Some(e)) => {
             let mut j = 0;
             while j < MAX_SPECTRAL && j < n {
-                out.v[j] = velinov_footprint_brdf(&params, &m.material, wi, wo, &e, wl.nm[j], set);
+                vals[j] = velinov_footprint_brdf(&params, &m.material, wi, wo, &e, wl.nm[j], set);
                 j += 1;
             }
             // The renderer weights a GHS base by 1 − ρc at the footprint centre.
@@ -82,7 +83,7 @@ pub fn eval<S: ScratchSet>(
             let f = m.material.reflectance(wi, wo);
             let mut j = 0;
             while j < MAX_SPECTRAL && j < n {
-                out.v[j] = table::model_value(
+                vals[j] = table::model_value(
                     model,
                     m.base_gaussian == 1,
                     &terms[j],
@@ -102,12 +103,12 @@ pub fn eval<S: ScratchSet>(
         while j < MAX_SPECTRAL && j < n {
             let g = ghs_value(m, lk.g1, wi, wo, wl.nm[j]);
             if g > 0.0 {
-                out.v[j] += w * g;
+                vals[j] += w * g;
             }
             j += 1;
         }
     }
-    out
+    Spectrum { v: vals }
 }
 
 /// [`eval`] for world directions in `frame`.

@@ -21,7 +21,7 @@
 //! The component is chosen with probability weight/total, the wavelength uniformly among
 //! those with a non-zero total, and the pdf is the balance-heuristic mixture
 //! `(1/n) Σ_j Σ_c P_jc p_jc(wi)`, so `sample`'s pdf equals `pdf` and `value` equals
-//! [`super::eval`]. Lobes per [`Strategy`]: this crate's disk-product lobes (nothing drawn
+//! [`super::eval()`]. Lobes per [`Strategy`]: this crate's disk-product lobes (nothing drawn
 //! below the horizon, pdf integrates to 1) or Werner §5's published ones (Gaussian base,
 //! vMF ring with uniform azimuth).
 

@@ -16,7 +16,7 @@
 //! | `frame` | [`ShadingFrame`]: world ↔ local |
 //! | `wavelengths` | [`Wavelengths`]: RGB set, stratified spectral sampling with pdf |
 //! | `material` | [`BsdfMaterial`], its per-paper depth-phase default, conversion from the renderer's record |
-//! | `eval` | [`eval`]: every wavelength from one scratch walk |
+//! | `eval` | [`eval()`]: every wavelength from one scratch walk |
 //! | `lobe1d` | truncated logistic / Cauchy mixtures (closed-form CDF and inverse) |
 //! | `lobes` | the directional lobes: disk-product lobes (this crate), Werner §5's Gaussian base and vMF ring |
 //! | `mixture` | component weights, [`sample`] and [`pdf`]: balance heuristic over base, scratches and GHS, and over the wavelengths |
@@ -90,13 +90,13 @@ impl Spectrum {
     /// Each entry times `s`.
     #[inline]
     pub fn scaled(self, s: f32) -> Spectrum {
-        let mut r = self;
+        let mut v = self.v;
         let mut j = 0;
         while j < MAX_SPECTRAL {
-            r.v[j] *= s;
+            v[j] *= s;
             j += 1;
         }
-        r
+        Spectrum { v }
     }
 }
 
@@ -168,7 +168,7 @@ pub struct BsdfSample {
     pub wi: Vec3,
     /// `f·cosθi/pdf` per wavelength (with the cosine).
     pub weight: Spectrum,
-    /// `f` per wavelength (without the cosine), equal to [`eval`] at `wi`.
+    /// `f` per wavelength (without the cosine), equal to [`eval()`] at `wi`.
     pub value: Spectrum,
     /// Solid-angle pdf of `wi`, equal to [`pdf`] at `wi`.
     pub pdf: f32,

@@ -154,8 +154,13 @@ pub fn scratch_response_spectral<S: ScratchSet>(
                     sigma,
                     q.eta,
                 );
-                terms[j].coherent.add(sk);
-                terms[j].incoherent += sk.norm_sqr();
+                // Load, update and store the whole element: rust-gpu lost updates made
+                // in place through a run-time index into this array of structs (the
+                // lavapipe test `backend-spirv/tests/bsdf.rs` caught it).
+                let mut t = terms[j];
+                t.coherent.add(sk);
+                t.incoherent += sk.norm_sqr();
+                terms[j] = t;
                 j += 1;
             }
             if q.area_density {
@@ -165,7 +170,9 @@ pub fn scratch_response_spectral<S: ScratchSet>(
     }
     let mut j = 0;
     while j < MAX_SPECTRAL {
-        terms[j].area_density = rho;
+        let mut t = terms[j];
+        t.area_density = rho;
+        terms[j] = t;
         j += 1;
     }
     terms
