@@ -175,7 +175,7 @@ fn werner_albedo_is_at_most_f() {
         let theta = [5.0f32, 40.0, 70.0, 85.0][k % 4].to_radians();
         let wo = bsdf_common::dir(theta, 6.0 * r.f());
         let lambda = 420.0 + 280.0 * r.f();
-        let (a, se) = albedo(&m, wo, lambda, &bsdf::Lookup::new(&set), 20_000, k as u64);
+        let (a, se) = albedo(&m, wo, lambda, &bsdf::Lookup::new(set), 20_000, k as u64);
         let ratio = a / f as f64;
         println!(
             "albedo/F = {ratio:.4} ± {:.4} ({count} scratches, θo = {:.0}°)",

@@ -260,7 +260,7 @@ pub fn bsdf(
     let i = id.x as usize;
     if i < out.len() {
         let set = ScratchBvh { nodes, scratches };
-        let lk = Lookup::with_g1_table(&set, G1Table::from_flat(g1));
+        let lk = Lookup::with_g1_table(set, G1Table::from_flat(g1));
         out[i] = bsdf_probe::evaluate(&material[0], &lk, &queries[i]);
     }
 }

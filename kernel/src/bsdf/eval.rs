@@ -30,7 +30,7 @@ pub fn eval<S: ScratchSet>(
     wl: &Wavelengths,
     lk: &Lookup<'_, S>,
 ) -> Spectrum {
-    let set = lk.scratches;
+    let set = &lk.scratches;
     let wi = direction(wi.to_array());
     let wo = direction(wo.to_array());
     let n = wl.len();

@@ -304,7 +304,7 @@ pub fn pdf_with<S: ScratchSet>(
     wl: &Wavelengths,
     lk: &Lookup<'_, S>,
 ) -> f32 {
-    let set = lk.scratches;
+    let set = &lk.scratches;
     let wo = direction(wo.to_array());
     let wi = direction(wi.to_array());
     if !(wo.z > 0.0 && wi.z > 0.0) {
@@ -434,7 +434,7 @@ pub fn sample_direction_with<S: ScratchSet>(
     u: Vec2,
     lk: &Lookup<'_, S>,
 ) -> Option<(Vec3, u32, u32)> {
-    let set = lk.scratches;
+    let set = &lk.scratches;
     let wo = direction(wo.to_array());
     if !(wo.z > 0.0) {
         return None;

@@ -51,25 +51,31 @@ use glam::{Vec2, Vec3};
 /// (the builtin `const` on the CPU; on the GPU a storage buffer holding
 /// [`G1Table::FLAT`], since a large `const` table indexed at run time does not compile
 /// there, see `ARCHITECTURE.md`).
+///
+/// The scratch set is held by value (`ScratchSlice` and `ScratchBvh` are two slices; a
+/// reference `&S` is a set too): a pointer to a local stored in a struct is not a logical
+/// pointer on SPIR-V.
 #[derive(Clone, Copy, Debug)]
 pub struct Lookup<'a, S: ScratchSet> {
     /// The scratches near a shading point.
-    pub scratches: &'a S,
+    pub scratches: S,
     /// The G1 table of the GHS lobes.
     pub g1: G1Table<'a>,
 }
 
-impl<'a, S: ScratchSet> Lookup<'a, S> {
+impl<S: ScratchSet> Lookup<'static, S> {
     /// `scratches` with the builtin G1 table.
-    pub fn new(scratches: &'a S) -> Lookup<'a, S> {
+    pub fn new(scratches: S) -> Lookup<'static, S> {
         Lookup {
             scratches,
             g1: G1Table::BUILTIN,
         }
     }
+}
 
+impl<'a, S: ScratchSet> Lookup<'a, S> {
     /// `scratches` with the given G1 table.
-    pub fn with_g1_table(scratches: &'a S, g1: G1Table<'a>) -> Lookup<'a, S> {
+    pub fn with_g1_table(scratches: S, g1: G1Table<'a>) -> Lookup<'a, S> {
         Lookup { scratches, g1 }
     }
 }
