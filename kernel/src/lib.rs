@@ -30,6 +30,7 @@
 #[macro_use]
 pub mod gpu_enum;
 
+pub mod bsdf;
 pub mod bvh;
 pub mod footprint;
 pub mod fresnel;

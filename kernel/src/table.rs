@@ -12,7 +12,7 @@ use crate::ghs::{self, GhsParams};
 use crate::material::Material;
 use crate::math;
 use crate::scratch::{
-    DepthTerm, EtaMode, ResponseInputs, ScratchSet, base_response, scratch_response,
+    DepthTerm, EtaMode, ResponseInputs, ScratchSet, ScratchTerms, base_response, scratch_response,
 };
 use crate::units::{depth_half_turns_per_um, direction, um_from_nm, xi_of};
 use bytemuck::{Pod, Zeroable};
@@ -103,6 +103,31 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
     };
     let terms = scratch_response(set, &inputs);
     let f = q.material.reflectance(wi, wo);
+    model_value(
+        model,
+        params.base_gaussian == 1,
+        &terms,
+        xi,
+        sigma,
+        f,
+        lambda,
+    )
+}
+
+/// The BRDF (1/sr, no cosine) of a scratch model from the scratch terms of one wavelength:
+/// `F/(πσ²λ²)` times `|B − S|²` (Werner Eq. 15), `|S|²` (Werner §5) or
+/// `Σ|S_k|² + (1 − ρc)|B|²·[base_gaussian]` (Velinov Eqs. 6–7), by [`Model`]. `f` is the
+/// reflectance F, `lambda` in µm; 0 unless the result is finite and positive.
+#[inline]
+pub fn model_value(
+    model: Model,
+    base_gaussian: bool,
+    terms: &ScratchTerms,
+    xi: Vec2,
+    sigma: f32,
+    f: f32,
+    lambda: f32,
+) -> f32 {
     let area = math::PI * sigma * sigma;
     let norm = f / (area * lambda * lambda);
     let v = match model {
@@ -112,7 +137,7 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
             .norm_sqr(),
         Model::WernerBlended => terms.coherent.total().norm_sqr(),
         Model::Velinov => {
-            let base = if params.base_gaussian == 1 {
+            let base = if base_gaussian {
                 let b = base_response(xi, sigma);
                 math::max(1.0 - terms.area_density, 0.0) * b * b
             } else {

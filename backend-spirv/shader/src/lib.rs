@@ -15,9 +15,11 @@
 //! are ordinary functions and [`probe`] serves as the CPU reference.
 #![no_std]
 
+pub mod bsdf_probe;
 pub mod probe;
 
 use bytemuck::{Pod, Zeroable};
+use scratchwave_kernel::bsdf::{BsdfMaterial, Lookup};
 use scratchwave_kernel::bvh::BvhNode;
 use scratchwave_kernel::footprint::{self, Ellipse};
 use scratchwave_kernel::ghs::GhsParams;
@@ -240,4 +242,25 @@ pub fn footprint_rho_p(
         ellipses,
         out,
     );
+}
+
+/// The BSDF interface (`scratchwave_kernel::bsdf`): `eval`, `pdf` and `sample` of one
+/// material per query ([`bsdf_probe::evaluate`]), over the uploaded scratch BVH and the G1
+/// table as a buffer.
+#[spirv(compute(threads(64)))]
+pub fn bsdf(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] material: &[BsdfMaterial],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] nodes: &[BvhNode],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] g1: &[f32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] queries: &[bsdf_probe::BsdfQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] out: &mut [bsdf_probe::BsdfResult],
+) {
+    let i = id.x as usize;
+    if i < out.len() {
+        let set = ScratchBvh { nodes, scratches };
+        let lk = Lookup::with_g1_table(set, G1Table::from_flat(g1));
+        out[i] = bsdf_probe::evaluate(&material[0], &lk, &queries[i]);
+    }
 }

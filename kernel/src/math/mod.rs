@@ -6,6 +6,7 @@
 //! (`erf`, `hypot`, complex `sqrt`/`exp`, `Si`) are built here from those primitives.
 
 mod atan;
+mod bessel;
 mod complex;
 mod expm1;
 mod faddeeva;
@@ -15,6 +16,7 @@ mod si;
 mod trig_pi;
 
 pub use atan::{acos, asin, atan, atan2};
+pub use bessel::bessel_i0e;
 pub use complex::{C32, cis, cmul_i, cscale, csqrt};
 pub use expm1::{expm1, ln1p};
 pub use faddeeva::{faddeeva, faddeeva_lanes};

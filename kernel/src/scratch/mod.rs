@@ -23,7 +23,8 @@ pub use grid::{GridHeader, ScratchGrid};
 pub use profile::{DepthTerm, Profile};
 pub use record::{Scratch, SegmentFrame};
 pub use response::{
-    ResponseInputs, ScratchTerms, base_response, scratch_area_density, scratch_response,
+    MAX_SPECTRAL, ResponseInputs, ScratchTerms, SpectralInputs, base_response,
+    scratch_area_density, scratch_response, scratch_response_spectral, scratch_term,
 };
 pub use set::{NearCursor, ScratchBvh, ScratchSet, ScratchSlice};
 pub use spatial_phase::{EtaMode, eta_finite, eta_infinite};

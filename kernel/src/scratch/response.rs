@@ -3,9 +3,10 @@
 
 use super::coherent_sum::CoherentSum;
 use super::profile::{Profile, mask_minus_profile};
+use super::record::{Scratch, SegmentFrame};
 use super::set::{NearCursor, ScratchSet};
 use super::spatial_phase::{EtaMode, eta, xi_local};
-use crate::math;
+use crate::math::{self, C32};
 use glam::Vec2;
 
 /// Radius, in units of σ, beyond which a scratch's contribution is dropped: its amplitude
@@ -63,10 +64,15 @@ pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTe
     let mut cursor = NearCursor::default();
     while let Some(s) = set.next_near(&mut cursor, q.x0, CUTOFF_SIGMAS * sigma) {
         if let Some(frame) = s.frame() {
-            let (_, xi2) = xi_local(&frame, q.xi);
-            let profile = Profile::from_u32(s.profile);
-            let m_p = mask_minus_profile(profile, s.width, s.depth, q.depth_half_turns_per_um, xi2);
-            let sk = m_p * eta(q.eta, &frame, q.x0, q.xi, sigma);
+            let sk = scratch_term(
+                &s,
+                &frame,
+                q.x0,
+                q.xi,
+                q.depth_half_turns_per_um,
+                sigma,
+                q.eta,
+            );
             terms.coherent.add(sk);
             terms.incoherent += sk.norm_sqr();
             if q.area_density {
@@ -77,9 +83,104 @@ pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTe
     terms
 }
 
+/// One scratch's term `S_k = (M_k − P_k) η_k` (the summand of Werner Eq. 17), µm².
+#[inline]
+pub fn scratch_term(
+    s: &Scratch,
+    frame: &SegmentFrame,
+    x0: Vec2,
+    xi: Vec2,
+    depth_half_turns_per_um: f32,
+    sigma: f32,
+    eta_mode: EtaMode,
+) -> C32 {
+    let (_, xi2) = xi_local(frame, xi);
+    let profile = Profile::from_u32(s.profile);
+    let m_p = mask_minus_profile(profile, s.width, s.depth, depth_half_turns_per_um, xi2);
+    m_p * eta(eta_mode, frame, x0, xi, sigma)
+}
+
+/// Most wavelengths one [`scratch_response_spectral`] walk serves.
+pub const MAX_SPECTRAL: usize = 4;
+
+/// Per-query inputs of [`scratch_response_spectral`]: [`ResponseInputs`] for up to
+/// [`MAX_SPECTRAL`] wavelengths at one shading point.
+#[derive(Clone, Copy, Debug)]
+pub struct SpectralInputs {
+    /// Shading point (µm).
+    pub x0: Vec2,
+    /// `ξ` per wavelength (1/µm).
+    pub xi: [Vec2; MAX_SPECTRAL],
+    /// The depth phase per µm of depth per wavelength (see [`ResponseInputs`]).
+    pub depth_half_turns_per_um: [f32; MAX_SPECTRAL],
+    /// How many entries of `xi` and `depth_half_turns_per_um` are used (1 to 4).
+    pub count: u32,
+    /// Coherence σ (µm).
+    pub sigma: f32,
+    /// Finite or infinite spatial phase.
+    pub eta: EtaMode,
+    /// Also accumulate ρc (once: it does not depend on the wavelength).
+    pub area_density: bool,
+}
+
+/// [`scratch_response`] for several wavelengths in one walk over the scratches near `x0`:
+/// entry `j < count` equals `scratch_response` at wavelength `j` bit for bit (the same
+/// terms added in the same order); entries past `count` stay empty. ρc, when asked for, is
+/// accumulated once and copied into every entry.
+pub fn scratch_response_spectral<S: ScratchSet>(
+    set: &S,
+    q: &SpectralInputs,
+) -> [ScratchTerms; MAX_SPECTRAL] {
+    let empty = ScratchTerms {
+        coherent: CoherentSum::new(base_response(Vec2::ZERO, q.sigma)),
+        incoherent: 0.0,
+        area_density: 0.0,
+    };
+    let mut terms = [empty; MAX_SPECTRAL];
+    let n = q.count as usize;
+    let sigma = q.sigma;
+    let mut rho = 0.0;
+    let mut cursor = NearCursor::default();
+    while let Some(s) = set.next_near(&mut cursor, q.x0, CUTOFF_SIGMAS * sigma) {
+        if let Some(frame) = s.frame() {
+            let mut j = 0;
+            while j < MAX_SPECTRAL && j < n {
+                let sk = scratch_term(
+                    &s,
+                    &frame,
+                    q.x0,
+                    q.xi[j],
+                    q.depth_half_turns_per_um[j],
+                    sigma,
+                    q.eta,
+                );
+                // Load, update and store the whole element: rust-gpu lost updates made
+                // in place through a run-time index into this array of structs (the
+                // lavapipe test `backend-spirv/tests/bsdf.rs` caught it).
+                let mut t = terms[j];
+                t.coherent.add(sk);
+                t.incoherent += sk.norm_sqr();
+                terms[j] = t;
+                j += 1;
+            }
+            if q.area_density {
+                rho += area_density_of(&frame, s.width, q.x0, sigma);
+            }
+        }
+    }
+    let mut j = 0;
+    while j < MAX_SPECTRAL {
+        let mut t = terms[j];
+        t.area_density = rho;
+        terms[j] = t;
+        j += 1;
+    }
+    terms
+}
+
 /// One segment's share of ρc: `W ∫ G ds / (2πσ²)`.
 #[inline]
-fn area_density_of(frame: &super::SegmentFrame, width: f32, x0: Vec2, sigma: f32) -> f32 {
+fn area_density_of(frame: &SegmentFrame, width: f32, x0: Vec2, sigma: f32) -> f32 {
     let (s_t, s_b) = frame.offset_from(x0);
     let along = math::gauss_interval(s_t - frame.half_len, s_t + frame.half_len, sigma);
     width * math::exp(-0.5 * s_b * s_b / (sigma * sigma)) * along / (math::TAU * sigma * sigma)

@@ -30,6 +30,13 @@ pub trait ScratchSet {
     }
 }
 
+impl<T: ScratchSet> ScratchSet for &T {
+    #[inline]
+    fn next_near(&self, cursor: &mut NearCursor, x0: Vec2, radius: f32) -> Option<Scratch> {
+        (**self).next_near(cursor, x0, radius)
+    }
+}
+
 /// Brute force over a slice: O(n) per query, the reference for every faster lookup.
 #[derive(Clone, Copy, Debug)]
 pub struct ScratchSlice<'a> {

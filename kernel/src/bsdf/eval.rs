@@ -1,0 +1,157 @@
+//! `eval`: the BRDF of a [`BsdfMaterial`] for every wavelength of a [`Wavelengths`] set.
+//!
+//! The scratch models walk the scratch lookup once for all wavelengths
+//! ([`scratch_response_spectral`], which also gathers ρc when the model needs it) and finish
+//! each wavelength with [`table::model_value`], so every value equals [`table::evaluate`]
+//! (and the renderer's `brdf`) bit for bit. GHS goes through [`table::evaluate_ghs_with_g1_table`]; the
+//! `(1 − ρc)` GHS base of WernerBlended and Velinov follows Werner §5. With a footprint,
+//! Velinov's model is averaged over it ([`velinov_footprint_brdf`], Velinov §4, one walk per
+//! wavelength); the coherent models and GHS are point-sampled at its centre.
+
+use super::{BsdfMaterial, Lookup, ShadingFrame, ShadingPoint, Spectrum, Wavelengths};
+use crate::ghs::g1::G1Table;
+use crate::math;
+use crate::render::footprint::velinov_footprint_brdf;
+use crate::render::shading::SceneModel;
+use crate::scratch::{
+    MAX_SPECTRAL, ScratchSet, SpectralInputs, scratch_area_density, scratch_response_spectral,
+};
+use crate::table::{self, TableQuery};
+use crate::units::{depth_half_turns_per_um, direction, um_from_nm, xi_of};
+use glam::{Vec2, Vec3};
+
+/// The BRDF (1/sr, **without** the cosine) for local `wi` (towards the light) and `wo`
+/// (towards the viewer), per wavelength. Zero below the horizon.
+pub fn eval<S: ScratchSet>(
+    m: &BsdfMaterial,
+    sp: &ShadingPoint,
+    wi: Vec3,
+    wo: Vec3,
+    wl: &Wavelengths,
+    lk: &Lookup<'_, S>,
+) -> Spectrum {
+    let set = &lk.scratches;
+    let wi = direction(wi.to_array());
+    let wo = direction(wo.to_array());
+    let n = wl.len();
+    // A plain local array, stored to by run-time index (see `scratch_response_spectral`).
+    let mut vals = [0.0; MAX_SPECTRAL];
+    if !(wi.z > 0.0 && wo.z > 0.0) {
+        return Spectrum::ZERO;
+    }
+    if m.scene_model() == SceneModel::Ghs {
+        let mut j = 0;
+        while j < MAX_SPECTRAL && j < n {
+            vals[j] = ghs_value(m, lk.g1, wi, wo, wl.nm[j]);
+            j += 1;
+        }
+        return Spectrum { v: vals };
+    }
+    let sigma = m.sigma_um;
+    if !(sigma > 0.0) {
+        return Spectrum::ZERO;
+    }
+    let params = m.table_params();
+    let model = m.table_model();
+    let ghs_base = m.has_ghs_base();
+    let rho = match (m.scene_model(), sp.footprint()) {
+        (SceneModel::Velinov, Some(e)) => {
+            let mut j = 0;
+            while j < MAX_SPECTRAL && j < n {
+                vals[j] = velinov_footprint_brdf(&params, &m.material, wi, wo, &e, wl.nm[j], set);
+                j += 1;
+            }
+            // The renderer weights a GHS base by 1 − ρc at the footprint centre.
+            if ghs_base {
+                scratch_area_density(set, sp.x(), sigma)
+            } else {
+                0.0
+            }
+        }
+        _ => {
+            let (xi, depth) = spectral_phases(m, wi, wo, wl);
+            let q = SpectralInputs {
+                x0: sp.x(),
+                xi,
+                depth_half_turns_per_um: depth,
+                count: n as u32,
+                sigma,
+                eta: m.eta_mode(),
+                area_density: ghs_base || (model == table::Model::Velinov && m.base_gaussian == 1),
+            };
+            let terms = scratch_response_spectral(set, &q);
+            let f = m.material.reflectance(wi, wo);
+            let mut j = 0;
+            while j < MAX_SPECTRAL && j < n {
+                vals[j] = table::model_value(
+                    model,
+                    m.base_gaussian == 1,
+                    &terms[j],
+                    xi[j],
+                    sigma,
+                    f,
+                    um_from_nm(wl.nm[j]),
+                );
+                j += 1;
+            }
+            terms[0].area_density
+        }
+    };
+    if ghs_base {
+        let w = math::max(1.0 - rho, 0.0);
+        let mut j = 0;
+        while j < MAX_SPECTRAL && j < n {
+            let g = ghs_value(m, lk.g1, wi, wo, wl.nm[j]);
+            if g > 0.0 {
+                vals[j] += w * g;
+            }
+            j += 1;
+        }
+    }
+    Spectrum { v: vals }
+}
+
+/// [`eval`] for world directions in `frame`.
+pub fn eval_world<S: ScratchSet>(
+    m: &BsdfMaterial,
+    frame: &ShadingFrame,
+    sp: &ShadingPoint,
+    wi: Vec3,
+    wo: Vec3,
+    wl: &Wavelengths,
+    lk: &Lookup<'_, S>,
+) -> Spectrum {
+    eval(m, sp, frame.to_local(wi), frame.to_local(wo), wl, lk)
+}
+
+/// The GHS BRDF at one wavelength (nm), through the table's function.
+#[inline]
+pub(crate) fn ghs_value(m: &BsdfMaterial, g1: G1Table, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
+    let q = TableQuery {
+        wi: wi.to_array(),
+        lambda_nm,
+        wo: wo.to_array(),
+        ..TableQuery::default()
+    };
+    table::evaluate_ghs_with_g1_table(&m.ghs, g1, &q)
+}
+
+/// `ξ` and the depth phase per wavelength for one direction pair.
+pub(crate) fn spectral_phases(
+    m: &BsdfMaterial,
+    wi: Vec3,
+    wo: Vec3,
+    wl: &Wavelengths,
+) -> ([Vec2; MAX_SPECTRAL], [f32; MAX_SPECTRAL]) {
+    let gamma = m.depth_term().gamma(wi.z + wo.z);
+    let mut xi = [Vec2::ZERO; MAX_SPECTRAL];
+    let mut depth = [0.0; MAX_SPECTRAL];
+    let n = wl.len();
+    let mut j = 0;
+    while j < MAX_SPECTRAL && j < n {
+        xi[j] = xi_of(wi, wo, wl.nm[j]);
+        depth[j] = depth_half_turns_per_um(gamma, wl.nm[j]);
+        j += 1;
+    }
+    (xi, depth)
+}

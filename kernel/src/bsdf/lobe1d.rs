@@ -1,0 +1,313 @@
+//! One-dimensional lobes with a CDF and its inverse, truncated to an interval: the Gaussian
+//! (the base response's `exp(−4π²σ²|ξ|²)`, Werner Eq. 16), the logistic (Gaussian-like
+//! lobes with heavier, exponential tails: along a scratch, where a finite segment's ends
+//! widen the window's Gaussian) and the Cauchy (for the scratch profile's `sinc²`), and
+//! mixtures of up to three components of one kind.
+//!
+//! Why these two: `sinc²(πx) (1 + π²x²) = sin²(πx) (1 + 1/(πx)²) ≤ 2`, so a Cauchy of scale
+//! `1/π` bounds the rectangular groove's `|M − P|² ∝ W² sinc²(πWξ₂)` (Werner Eq. 14/26) to
+//! within a factor 2 everywhere, tails included; and both CDFs invert in closed form, so
+//! truncating a lobe to the chord of the unit disk that keeps the sampled direction above
+//! the horizon costs nothing and the pdf integrates to exactly 1 (Werner §5 drops
+//! evanescent samples instead). The logistic's tails (`e^{−|x|/s}`) are heavier than the
+//! Gaussian it stands for, so the ratio target/proposal stays bounded as well.
+//!
+//! Tail accuracy: masses and inverse CDFs are evaluated on the side of the centre where the
+//! CDF is small (`F(z)` for `z ≤ 0`, `1 − F(z) = F(−z)` otherwise), so an interval far in
+//! either tail keeps its relative accuracy.
+
+use crate::math;
+
+gpu_enum! {
+    /// The component family of a [`Lobe1`].
+    pub enum Lobe1Kind {
+        /// Logistic: `F(z) = 1/(1 + e^{−z})`, `z = (x − μ)/s`.
+        Logistic = 0,
+        /// Cauchy: `F(z) = ½ + atan(z)/π`.
+        Cauchy = 1,
+        /// Gaussian: `F(z) = ½ erfc(−z/√2)` on the small side, inverted by Acklam's
+        /// rational approximation and one Halley step.
+        Gaussian = 2,
+    }
+    fallback = Logistic;
+}
+
+/// Most components of a [`Lobe1`].
+pub const LOBE1_MAX: usize = 3;
+
+/// A mixture of up to [`LOBE1_MAX`] components of one kind (weights need not be
+/// normalised; they are renormalised over the truncation interval).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lobe1 {
+    /// Component family.
+    pub kind: Lobe1Kind,
+    /// Number of components (1 to 3).
+    pub count: u32,
+    /// Centres μ.
+    pub mu: [f32; LOBE1_MAX],
+    /// Scales s (> 0).
+    pub scale: [f32; LOBE1_MAX],
+    /// Relative weights (≥ 0).
+    pub weight: [f32; LOBE1_MAX],
+}
+
+impl Lobe1 {
+    /// One component.
+    pub fn single(kind: Lobe1Kind, mu: f32, scale: f32) -> Lobe1 {
+        Lobe1 {
+            kind,
+            count: 1,
+            mu: [mu, 0.0, 0.0],
+            scale: [scale, 1.0, 1.0],
+            weight: [1.0, 0.0, 0.0],
+        }
+    }
+
+    #[inline]
+    fn n(&self) -> usize {
+        if self.count as usize > LOBE1_MAX {
+            LOBE1_MAX
+        } else {
+            self.count as usize
+        }
+    }
+
+    /// Untruncated density of component `j` at `x`.
+    #[inline]
+    fn density_one(&self, j: usize, x: f32) -> f32 {
+        if j >= LOBE1_MAX {
+            return 0.0;
+        }
+        let s = self.scale[j];
+        let z = (x - self.mu[j]) / s;
+        match self.kind {
+            Lobe1Kind::Logistic => {
+                let e = math::exp(-math::abs(z));
+                e / (s * (1.0 + e) * (1.0 + e))
+            }
+            Lobe1Kind::Cauchy => 1.0 / (math::PI * s * (1.0 + z * z)),
+            Lobe1Kind::Gaussian => math::exp(-0.5 * z * z) * (FRAC_1_SQRT_TAU / s),
+        }
+    }
+
+    /// `F(z)` for the standardised component, accurate where small (`z ≤ 0`).
+    #[inline]
+    fn cdf_low(&self, z: f32) -> f32 {
+        match self.kind {
+            Lobe1Kind::Logistic => 1.0 / (1.0 + math::exp(-z)),
+            // ½ + atan(z)/π = atan(−1/z)/π for z < 0 (no cancellation).
+            Lobe1Kind::Cauchy => {
+                if z < -1.0 {
+                    math::atan(-1.0 / z) * (1.0 / math::PI)
+                } else {
+                    0.5 + math::atan(z) * (1.0 / math::PI)
+                }
+            }
+            Lobe1Kind::Gaussian => {
+                if z <= 0.0 {
+                    gauss_tail(-z)
+                } else {
+                    1.0 - gauss_tail(z)
+                }
+            }
+        }
+    }
+
+    /// Inverse of [`Lobe1::cdf_low`] for `p ∈ (0, ½]`.
+    #[inline]
+    fn inv_low(&self, p: f32) -> f32 {
+        match self.kind {
+            Lobe1Kind::Logistic => math::ln(p / (1.0 - p)),
+            Lobe1Kind::Cauchy => {
+                if p < 0.25 {
+                    -1.0 / math::tan(math::PI * p)
+                } else {
+                    math::tan(math::PI * (p - 0.5))
+                }
+            }
+            Lobe1Kind::Gaussian => gauss_inv_low(p),
+        }
+    }
+
+    /// Mass of component `j` on `[a, b]`.
+    #[inline]
+    fn mass_one(&self, j: usize, a: f32, b: f32) -> f32 {
+        if j >= LOBE1_MAX || !(b > a) {
+            return 0.0;
+        }
+        let s = self.scale[j];
+        let za = (a - self.mu[j]) / s;
+        let zb = (b - self.mu[j]) / s;
+        let m = if zb <= 0.0 {
+            self.cdf_low(zb) - self.cdf_low(za)
+        } else if za >= 0.0 {
+            self.cdf_low(-za) - self.cdf_low(-zb)
+        } else {
+            1.0 - self.cdf_low(za) - self.cdf_low(-zb)
+        };
+        math::max(m, 0.0)
+    }
+
+    /// Total weighted mass on `[a, b]`: `Σ w_j m_j(a, b)`.
+    pub fn mass(&self, a: f32, b: f32) -> f32 {
+        let n = self.n();
+        let mut total = 0.0;
+        let mut j = 0;
+        while j < LOBE1_MAX && j < n {
+            total += self.weight[j] * self.mass_one(j, a, b);
+            j += 1;
+        }
+        total
+    }
+
+    /// Density at `x` of the mixture truncated to `[a, b]` (0 outside).
+    #[allow(clippy::manual_range_contains)] // `RangeInclusive::contains` is rejected by spirv-val
+    pub fn pdf(&self, x: f32, a: f32, b: f32) -> f32 {
+        if !(x >= a && x <= b) {
+            return 0.0;
+        }
+        let total = self.mass(a, b);
+        if !(total > 0.0) {
+            return 0.0;
+        }
+        let n = self.n();
+        let mut d = 0.0;
+        let mut j = 0;
+        while j < LOBE1_MAX && j < n {
+            d += self.weight[j] * self.density_one(j, x);
+            j += 1;
+        }
+        d / total
+    }
+
+    /// Draws `x` from the mixture truncated to `[a, b]`: the component `j` with probability
+    /// `w_j m_j / Σ w m` (from `u`, rescaled), then its truncated inverse CDF. `None` when
+    /// the interval carries no mass.
+    pub fn sample(&self, u: f32, a: f32, b: f32) -> Option<f32> {
+        let total = self.mass(a, b);
+        if !(total > 0.0) || !total.is_finite() {
+            return None;
+        }
+        let n = self.n();
+        let target = u * total;
+        let mut acc = 0.0;
+        let mut j = 0;
+        let mut pick = 0;
+        let mut pick_mass = 0.0;
+        let mut below = 0.0;
+        while j < LOBE1_MAX && j < n {
+            let wm = self.weight[j] * self.mass_one(j, a, b);
+            if wm > 0.0 {
+                pick = j;
+                pick_mass = wm;
+                below = acc;
+                if target < acc + wm {
+                    break;
+                }
+            }
+            acc += wm;
+            j += 1;
+        }
+        if !(pick_mass > 0.0) || pick >= LOBE1_MAX {
+            return None;
+        }
+        let v = math::clamp((target - below) / pick_mass, 0.0, 1.0);
+        let x = self.sample_one(pick, v, a, b);
+        Some(math::clamp(x, a, b))
+    }
+
+    /// Truncated inverse CDF of component `j` at `v ∈ [0, 1]`.
+    #[inline]
+    fn sample_one(&self, j: usize, v: f32, a: f32, b: f32) -> f32 {
+        if j >= LOBE1_MAX {
+            return a;
+        }
+        let (mu, s) = (self.mu[j], self.scale[j]);
+        let za = (a - mu) / s;
+        let zb = (b - mu) / s;
+        // An interval wholly right of the centre is read mirrored, in the left tail, where
+        // the CDF is small and keeps its relative accuracy.
+        let flip = za >= 0.0;
+        let (lo, hi, v) = if flip {
+            (-zb, -za, 1.0 - v)
+        } else {
+            (za, zb, v)
+        };
+        let f_lo = self.cdf_low(lo);
+        // The interval's mass and 1 − F(hi), each without cancellation.
+        let (width, tail_hi) = if hi > 0.0 {
+            let t = self.cdf_low(-hi);
+            (1.0 - t - f_lo, t)
+        } else {
+            let f_hi = self.cdf_low(hi);
+            (f_hi - f_lo, 1.0 - f_hi)
+        };
+        let width = math::max(width, 0.0);
+        let p = f_lo + v * width;
+        let z = if p <= 0.5 {
+            self.inv_low(p)
+        } else {
+            // 1 − p on its own small side.
+            -self.inv_low(math::max((1.0 - v) * width + tail_hi, 0.0))
+        };
+        let z = if flip { -z } else { z };
+        mu + s * z
+    }
+}
+
+/// 1/√(2π).
+const FRAC_1_SQRT_TAU: f32 = 0.398_942_280_401_432_7;
+
+/// `1 − Φ(x) = ½ erfc(x/√2)` for `x ≥ 0`: the Chebyshev-fitted `erfc` of Numerical Recipes
+/// (`erfcc`, fractional error below 1.2e-7 everywhere), one `exp` and no cancellation in
+/// the tail.
+#[inline]
+fn gauss_tail(x: f32) -> f32 {
+    let z = math::abs(x) * core::f32::consts::FRAC_1_SQRT_2;
+    let t = 1.0 / (1.0 + 0.5 * z);
+    let poly = -z * z - 1.265_512_2
+        + t * (1.000_023_7
+            + t * (0.374_091_96
+                + t * (0.096_784_18
+                    + t * (-0.186_288_06
+                        + t * (0.278_868_07
+                            + t * (-1.135_203_98
+                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
+    0.5 * t * math::exp(poly)
+}
+
+/// `Φ⁻¹(p)` for `p ∈ (0, ½]`: P. J. Acklam's rational approximation (relative error
+/// 1.15e-9) refined by one Halley step on [`gauss_tail`].
+#[inline]
+fn gauss_inv_low(p: f32) -> f32 {
+    if !(p > 0.0) {
+        return -14.0;
+    }
+    let x = if p < 0.024_25 {
+        let q = math::sqrt(-2.0 * math::ln(p));
+        (((((-7.784_894e-3 * q - 3.223_964_6e-1) * q - 2.400_758_3) * q - 2.549_732_5) * q
+            + 4.374_664_1)
+            * q
+            + 2.938_163_9)
+            / ((((7.784_695_7e-3 * q + 3.224_671_3e-1) * q + 2.445_134_1) * q + 3.754_408_7) * q
+                + 1.0)
+    } else {
+        let q = p - 0.5;
+        let r = q * q;
+        (((((-3.969_683e1 * r + 2.209_461e2) * r - 2.759_285_1e2) * r + 1.383_577_5e2) * r
+            - 3.066_479_8e1)
+            * r
+            + 2.506_628_3)
+            * q
+            / (((((-5.447_61e1 * r + 1.615_858_4e2) * r - 1.556_989_8e2) * r + 6.680_131_2e1) * r
+                - 1.328_068_2e1)
+                * r
+                + 1.0)
+    };
+    // Halley: e = Φ(x) − p, u = e √(2π) e^{x²/2}.
+    let x = math::min(x, 0.0);
+    let e = gauss_tail(-x) - p;
+    let u = e * math::exp(0.5 * x * x) / FRAC_1_SQRT_TAU;
+    let step = u / (1.0 + 0.5 * x * u);
+    if step.is_finite() { x - step } else { x }
+}

@@ -1,0 +1,175 @@
+//! Directional lobes for sampling `wi` given `wo` (local frame, both above the surface).
+//!
+//! Every scratch-model lobe lives in the projected disk of `d = (wi + wo)_xy = λξ`
+//! (Werner Eq. 22 solved for `wi`): `wi_xy = d − wo_xy`, so the directions above the horizon
+//! are the unit disk centred at `wo_xy`, and a density `p_d` in `d` is the solid-angle
+//! density `p_d · cosθi` (the Nusselt analog, Werner §5).
+//!
+//! * [`DiskLobe`] (this crate): a product of two [`Lobe1`]s along orthonormal axes `e1`,
+//!   `e2`; `d·e1` is drawn on the disk's extent along `e1`, then `d·e2` on the chord at that
+//!   `d·e1`, so nothing is drawn below the horizon and the pdf integrates to 1. The base
+//!   response is the Gaussian product of Werner Eq. 21, truncated; a scratch is a logistic
+//!   along its tangent (the coherence window) times
+//!   a Cauchy (mixture) across it (the profile's `sinc²`, Werner Eqs. 14, 26–31).
+//! * [`gaussian_base_sample`]: Werner §5's base sampler verbatim: `ξ` from two normal
+//!   numbers with the standard deviation `1/(√8 πσ)` of Eq. 21, `wi` from Eq. 22, evanescent
+//!   samples dropped (so its pdf integrates to less than 1 at grazing `wo`).
+//! * [`vmf_ring_sample`]: Werner §5's scratch sampler: the d'Eon et al. 2011 cone of
+//!   directions with `wi·t = −wo·t` around the scratch tangent `t` at a uniform azimuth,
+//!   perturbed by a von Mises–Fisher direction of concentration κ; directions below the
+//!   surface are mirrored (density doubled). Its density is the paper's
+//!   `κ/(4π sinh κ) e^{−κ cosθo cosθ} I₀(κ sinθo sinθ)` (θ measured from `t`), evaluated
+//!   with the scaled Bessel function so that κ ~ 10⁴ does not overflow.
+
+use super::lobe1d::Lobe1;
+use crate::math;
+use glam::{Vec2, Vec3};
+
+/// A product lobe in the projected disk of `d = (wi + wo)_xy` (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiskLobe {
+    /// First axis (unit, in the tangent plane).
+    pub e1: Vec2,
+    /// Lobe of `d·e1`.
+    pub l1: Lobe1,
+    /// Lobe of `d·e2`, `e2 = (−e1.y, e1.x)`.
+    pub l2: Lobe1,
+}
+
+impl DiskLobe {
+    #[inline]
+    fn axes(&self, wo: Vec3) -> (Vec2, Vec2, f32, f32) {
+        let e1 = self.e1;
+        let e2 = Vec2::new(-e1.y, e1.x);
+        let c = Vec2::new(wo.x, wo.y);
+        (e1, e2, c.dot(e1), c.dot(e2))
+    }
+
+    /// Draws `wi` from `u ∈ [0, 1)²`; `None` if a coordinate lands on the horizon by
+    /// rounding.
+    pub fn sample(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
+        let (e1, e2, c1, c2) = self.axes(wo);
+        let d1 = self.l1.sample(u.x, c1 - 1.0, c1 + 1.0)?;
+        let a = math::clamp(d1 - c1, -1.0, 1.0);
+        let h2 = (1.0 - a) * (1.0 + a);
+        if !(h2 > 0.0) {
+            return None;
+        }
+        let h = math::sqrt(h2);
+        let d2 = self.l2.sample(u.y, c2 - h, c2 + h)?;
+        let b = math::clamp(d2 - c2, -h, h);
+        let z2 = (h - b) * (h + b);
+        if !(z2 > 0.0) {
+            return None;
+        }
+        let w = e1 * a + e2 * b;
+        Some(Vec3::new(w.x, w.y, math::sqrt(z2)))
+    }
+
+    /// Solid-angle pdf of [`DiskLobe::sample`] at `wi`.
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if !(wi.z > 0.0) {
+            return 0.0;
+        }
+        let (e1, e2, c1, c2) = self.axes(wo);
+        let w = Vec2::new(wi.x, wi.y);
+        let a = w.dot(e1);
+        let b = w.dot(e2);
+        let h2 = (1.0 - a) * (1.0 + a);
+        if !(h2 > 0.0) {
+            return 0.0;
+        }
+        let h = math::sqrt(h2);
+        let p1 = self.l1.pdf(a + c1, c1 - 1.0, c1 + 1.0);
+        let p2 = self.l2.pdf(math::clamp(b, -h, h) + c2, c2 - h, c2 + h);
+        p1 * p2 * wi.z
+    }
+}
+
+/// Werner Eq. 21: the standard deviation of the base response's angular spectrum per axis,
+/// `1/(√8 πσ)` (1/µm).
+#[inline]
+pub fn base_xi_std(sigma: f32) -> f32 {
+    1.0 / (2.0 * math::SQRT_2 * math::PI * sigma)
+}
+
+/// Werner §5 / Eqs. 21–22: `d = λξ` from two normal numbers (Box–Muller on `u`) with
+/// standard deviation `std_d = λ/(√8 πσ)` in `d`, `wi_xy = d − wo_xy`; `None` for an
+/// evanescent sample (dropped, as in the paper).
+pub fn gaussian_base_sample(std_d: f32, wo: Vec3, u: Vec2) -> Option<Vec3> {
+    let r = std_d * math::sqrt0(-2.0 * math::ln(math::max(1.0 - u.x, 1.0e-30)));
+    let (s, c) = math::sin_cos(math::TAU * u.y);
+    let w = Vec2::new(r * c - wo.x, r * s - wo.y);
+    let z2 = 1.0 - w.length_squared();
+    if !(z2 > 0.0) {
+        return None;
+    }
+    Some(Vec3::new(w.x, w.y, math::sqrt(z2)))
+}
+
+/// Solid-angle pdf of [`gaussian_base_sample`] at `wi`.
+pub fn gaussian_base_pdf(std_d: f32, wo: Vec3, wi: Vec3) -> f32 {
+    if !(wi.z > 0.0) || !(std_d > 0.0) {
+        return 0.0;
+    }
+    let d2 = (wi.x + wo.x) * (wi.x + wo.x) + (wi.y + wo.y) * (wi.y + wo.y);
+    let v = std_d * std_d;
+    math::exp(-0.5 * d2 / v) / (math::TAU * v) * wi.z
+}
+
+/// Werner §5 (after d'Eon et al. 2011): a direction on the cone `wi·t = −wo·t` about the
+/// scratch tangent `t` (unit, in the surface plane) at azimuth `2π u_ring`, perturbed by a
+/// von Mises–Fisher direction of concentration `kappa` from `u`, mirrored above the
+/// surface if it points below.
+pub fn vmf_ring_sample(t: Vec2, kappa: f32, wo: Vec3, u_ring: f32, u: Vec2) -> Option<Vec3> {
+    if !(kappa > 0.0) {
+        return None;
+    }
+    let t3 = Vec3::new(t.x, t.y, 0.0);
+    let (a1, a2) = (Vec3::Z, t3.cross(Vec3::Z));
+    let co = wo.dot(t3);
+    let so = math::sqrt0((1.0 - co) * (1.0 + co));
+    let (sp, cp) = math::sin_cos(math::TAU * u_ring);
+    let mu = t3 * (-co) + (a1 * cp + a2 * sp) * so;
+    // vMF about mu: w = 1 + ln(v + (1 − v) e^{−2κ})/κ.
+    let w = 1.0 + math::ln(u.x + (1.0 - u.x) * math::exp(-2.0 * kappa)) / kappa;
+    let w = math::clamp(w, -1.0, 1.0);
+    let sw = math::sqrt0((1.0 - w) * (1.0 + w));
+    let (b1, b2) = orthonormal(mu);
+    let (sq, cq) = math::sin_cos(math::TAU * u.y);
+    let mut d = mu * w + (b1 * cq + b2 * sq) * sw;
+    if d.z < 0.0 {
+        d.z = -d.z;
+    }
+    let d = d.normalize_or_zero();
+    if d.z > 0.0 { Some(d) } else { None }
+}
+
+/// Solid-angle pdf of [`vmf_ring_sample`] at `wi` (upper hemisphere): twice the paper's
+/// ring density, `κ/(2π(1 − e^{−2κ})) e^{−κ(1 + cosθo cosθ − sinθo sinθ)} e^{−x}I₀(x)`
+/// with `x = κ sinθo sinθ`, times 2 for the mirroring.
+pub fn vmf_ring_pdf(t: Vec2, kappa: f32, wo: Vec3, wi: Vec3) -> f32 {
+    if !(wi.z > 0.0) || !(kappa > 0.0) {
+        return 0.0;
+    }
+    let t3 = Vec3::new(t.x, t.y, 0.0);
+    let co = wo.dot(t3);
+    let c = wi.dot(t3);
+    let so = math::sqrt0((1.0 - co) * (1.0 + co));
+    let s = math::sqrt0((1.0 - c) * (1.0 + c));
+    let x = kappa * so * s;
+    let norm = kappa / (math::TAU * -math::expm1(-2.0 * kappa));
+    2.0 * norm * math::exp(-kappa * (1.0 + co * c - so * s)) * math::bessel_i0e(x)
+}
+
+/// Two unit vectors completing unit `n` to an orthonormal basis (Duff et al. 2017).
+#[inline]
+fn orthonormal(n: Vec3) -> (Vec3, Vec3) {
+    let s = math::sign(n.z);
+    let a = -1.0 / (s + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3::new(1.0 + s * n.x * n.x * a, s * b, -s * n.x),
+        Vec3::new(b, s + n.y * n.y * a, -n.y),
+    )
+}
