@@ -26,8 +26,8 @@ pub struct Wavelengths {
 
 const _: () = assert!(core::mem::size_of::<Wavelengths>() == 48);
 
-/// Werner 2017 §5's RGB wavelengths (nm): red, green, blue.
-pub const RGB_NM: [f32; 3] = [700.0, 520.0, 440.0];
+/// Werner 2017 §5's RGB wavelengths (nm): red, green, blue (the renderer's RGB mode).
+pub use crate::render::spectrum::RGB_NM;
 
 /// The visible range used by [`Wavelengths::sample_visible`] (nm).
 pub const VISIBLE_NM: [f32; 2] = [360.0, 830.0];

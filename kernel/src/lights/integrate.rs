@@ -619,8 +619,9 @@ pub fn light_integral_footprint<S: ScratchSet>(
     light_integrals(params, q, &lambdas, 1, fp, set)[0]
 }
 
-/// Most wavelengths one [`light_integrals`] call evaluates.
-pub const MAX_LAMBDAS: usize = 4;
+/// Most wavelengths one [`light_integrals`] call evaluates (as many as one walk of the
+/// scratch response, [`crate::scratch::MAX_SPECTRAL`]).
+pub const MAX_LAMBDAS: usize = crate::scratch::MAX_SPECTRAL;
 
 /// [`light_integral`] at the first `count` (≤ [`MAX_LAMBDAS`]) of `lambdas_nm`
 /// (`q.lambda_nm` is not read) in one walk of the scratch set, optionally averaged over
