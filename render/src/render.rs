@@ -7,6 +7,7 @@ use crate::scene::Scene;
 use crate::scene::{Footprint, Shadows};
 use rayon::prelude::*;
 use scratchwave_host::{Coherence, RayQueries};
+use scratchwave_kernel::bsdf::Wavelengths;
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::glam::Vec3;
 use scratchwave_kernel::lights::MAX_LAMBDAS;
@@ -298,6 +299,20 @@ fn hit_point(
     })
 }
 
+/// Wavelengths `k0..` of the render's spectrum, at most [`MAX_LAMBDAS`] of them.
+fn wavelength_group(ctx: &Ctx, k0: u32) -> Wavelengths {
+    let count = (ctx.n_lambda - k0).min(MAX_LAMBDAS as u32);
+    let mut wl = Wavelengths {
+        count,
+        ..Wavelengths::default()
+    };
+    for j in 0..count as usize {
+        wl.nm[j] = (ctx.lambda)(k0 + j as u32);
+        wl.pdf[j] = 1.0;
+    }
+    wl
+}
+
 /// Unit direction towards a point or directional light and the shadow ray's extent.
 fn delta_direction(light: &SceneLight, sp: &SurfacePoint) -> (Vec3, f32) {
     let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
@@ -356,11 +371,16 @@ fn shade_light<Q: RayQueries + ?Sized>(
         if first_blocked != [false] {
             return;
         }
-        for k in 0..ctx.n_lambda {
-            let lam = (ctx.lambda)(k);
-            let l = shading::delta_light(m, &hp.sp, hp.wo, light, lam, &set, &hp.fp);
-            *shading_evals += 1;
-            spectrum::accumulate(ctx.mode, k, lam, l, acc);
+        // Wavelengths in groups of MAX_LAMBDAS: one scratch walk per group.
+        let mut k0 = 0;
+        while k0 < ctx.n_lambda {
+            let wl = wavelength_group(ctx, k0);
+            let l = shading::delta_light_spectrum(m, &hp.sp, hp.wo, light, &wl, &set, &hp.fp);
+            for j in 0..wl.count {
+                *shading_evals += 1;
+                spectrum::accumulate(ctx.mode, k0 + j, wl.nm[j as usize], l.v[j as usize], acc);
+            }
+            k0 += wl.count;
         }
         return;
     }
@@ -383,9 +403,7 @@ fn shade_light<Q: RayQueries + ?Sized>(
         light,
         queries,
         consensus,
-        ctx.mode,
-        ctx.n_lambda,
-        ctx.lambda,
+        ctx,
         &set,
         acc,
         shading_evals,
@@ -404,9 +422,7 @@ fn area_light<Q: RayQueries + ?Sized, S: scratchwave_kernel::scratch::ScratchSet
     light: &SceneLight,
     queries: &Q,
     consensus: Option<bool>,
-    mode: SpectrumMode,
-    n_lambda: u32,
-    lambda: &dyn Fn(u32) -> f32,
+    ctx: &Ctx,
     set: &S,
     acc: &mut [f32; 3],
     shading_evals: &mut u64,
@@ -453,34 +469,53 @@ fn area_light<Q: RayQueries + ?Sized, S: scratchwave_kernel::scratch::ScratchSet
     }
     let closed = shading::closed_form_area(m);
     let scale = w_vis / w_all;
-    // Wavelengths in groups of MAX_LAMBDAS: one scratch walk per group.
+    // Wavelengths in groups of MAX_LAMBDAS: one scratch walk per group (and per node).
     let mut k0 = 0;
-    while k0 < n_lambda {
-        let count = (n_lambda - k0).min(MAX_LAMBDAS as u32) as usize;
-        let mut lams = [0.0f32; MAX_LAMBDAS];
-        for (j, l) in lams.iter_mut().enumerate().take(count) {
-            *l = lambda(k0 + j as u32);
-        }
+    while k0 < ctx.n_lambda {
+        let wl = wavelength_group(ctx, k0);
+        let count = wl.count as usize;
         let closed_l = if closed {
             *shading_evals += count as u64;
-            shading::velinov_area_light(m, sp, wo, light, &lams, count, set, fp)
+            shading::velinov_area_light(m, sp, wo, light, &wl.nm, count, set, fp)
         } else {
             [0.0; MAX_LAMBDAS]
         };
-        for (j, &lam) in lams.iter().enumerate().take(count) {
+        // Per node, every wavelength of the group (quadrature models: one walk per node).
+        let mut node_l = [[0.0f32; MAX_LAMBDAS]; area::MAX_NODES as usize];
+        if nodes && !closed {
+            for (slot, node) in visible.iter().enumerate() {
+                if let Some(node) = node {
+                    node_l[slot] = shading::area_node_radiance_spectrum(
+                        m,
+                        sp,
+                        wo,
+                        node,
+                        light.emission,
+                        &wl,
+                        set,
+                    )
+                    .v;
+                }
+            }
+        }
+        for j in 0..count {
+            let lam = wl.nm[j];
             let mut l = closed_l[j] * scale;
             if nodes {
-                for node in visible.iter().flatten() {
+                for (slot, node) in visible.iter().enumerate() {
+                    let Some(node) = node else {
+                        continue;
+                    };
                     l += if closed {
                         shading::base_node_radiance(m, sp, wo, node, light.emission, lam, set)
                     } else {
-                        shading::area_node_radiance(m, sp, wo, node, light.emission, lam, set)
+                        node_l[slot][j]
                     };
                     *shading_evals += 1;
                 }
             }
-            spectrum::accumulate(mode, k0 + j as u32, lam, l, acc);
+            spectrum::accumulate(ctx.mode, k0 + j as u32, lam, l, acc);
         }
-        k0 += count as u32;
+        k0 += wl.count;
     }
 }

@@ -2,8 +2,9 @@
 //! towards the viewer. Directions are in the shading frame (`z` = normal), `wo` towards the
 //! viewer, `wi` towards the light.
 //!
-//! * Werner, Werner-blended and Velinov evaluate [`table::evaluate`] (the `table` command's
-//!   function); GHS evaluates [`table::evaluate_ghs`].
+//! * The BRDF is the material interface's [`bsdf::eval`] (one scratch walk for up to four
+//!   wavelengths), whose scratch models equal [`table::evaluate`] (the `table` command's
+//!   function) bit for bit; GHS is [`table::evaluate_ghs`].
 //! * `werner_blended` and `velinov` with a GHS base add `(1 − ρc)·f_base` (Werner 2017 §5;
 //!   Velinov 2018 Eq. 7's `(1 − ρc)` weight), ρc from [`scratch_area_density`].
 //! * Point light: `f·max(cos θi, 0)·I/d²`; directional: `f·max(cos θi, 0)·E`.
@@ -14,8 +15,9 @@
 //!   quadrature of [`super::area`].
 
 use super::area::{AreaNode, SceneLight, SceneLightKind};
-use super::footprint::{footprint_density, velinov_footprint_brdf};
+use super::footprint::footprint_density;
 use super::surface::SurfacePoint;
+use crate::bsdf::{self, BsdfMaterial, Lookup, ShadingPoint, Spectrum, Wavelengths};
 use crate::footprint::Ellipse;
 use crate::ghs::GhsParams;
 use crate::lights::{
@@ -24,7 +26,7 @@ use crate::lights::{
 use crate::material::Material;
 use crate::math;
 use crate::scratch::{ScratchSet, scratch_area_density};
-use crate::table::{self, Model, TableParams, TableQuery};
+use crate::table::{self, TableParams, TableQuery};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 
@@ -98,7 +100,7 @@ pub fn base_weight<S: ScratchSet>(m: &ShadeMaterial, x: Vec2, set: &S) -> f32 {
 }
 
 /// The material's BRDF (1/sr, no cosine) for shading-frame `wi`, `wo` at scratch-space
-/// `x` (µm) and λ (nm), the base included.
+/// `x` (µm) and λ (nm), the base included: [`brdf_spectrum`] at one wavelength.
 pub fn brdf<S: ScratchSet>(
     m: &ShadeMaterial,
     wi: Vec3,
@@ -107,25 +109,12 @@ pub fn brdf<S: ScratchSet>(
     lambda_nm: f32,
     set: &S,
 ) -> f32 {
-    let q = query(m, wi, wo, x, lambda_nm);
-    if SceneModel::from_u32(m.model) == SceneModel::Ghs {
-        return table::evaluate_ghs(&m.ghs, &q);
-    }
-    let mut f = table::evaluate(&m.table, &q, set);
-    if BaseKind::from_u32(m.base) == BaseKind::Ghs
-        && Model::from_u32(m.table.model) != Model::Werner
-    {
-        let g = table::evaluate_ghs(&m.ghs, &q);
-        if g > 0.0 {
-            f += base_weight(m, x, set) * g;
-        }
-    }
-    f
+    brdf_footprint(m, wi, wo, x, &Ellipse::default(), lambda_nm, set)
 }
 
-/// [`brdf`], or with a footprint (`fp.a1 > 0`) Velinov's model averaged over it
-/// ([`velinov_footprint_brdf`], Velinov §4; a GHS base is weighted by `1 − ρc` at the
-/// footprint centre). The coherent models and GHS are point-sampled at the centre.
+/// [`brdf`], or with a footprint (`fp.a1 > 0`) Velinov's model averaged over it (Velinov
+/// §4; a GHS base is weighted by `1 − ρc` at the footprint centre). The coherent models and
+/// GHS are point-sampled at the centre.
 pub fn brdf_footprint<S: ScratchSet>(
     m: &ShadeMaterial,
     wi: Vec3,
@@ -135,22 +124,52 @@ pub fn brdf_footprint<S: ScratchSet>(
     lambda_nm: f32,
     set: &S,
 ) -> f32 {
-    if !(fp.a1 > 0.0) || SceneModel::from_u32(m.model) != SceneModel::Velinov {
-        return brdf(m, wi, wo, x, lambda_nm, set);
+    brdf_spectrum(
+        m,
+        wi,
+        wo,
+        &shading_point(x, fp),
+        &Wavelengths::single(lambda_nm),
+        set,
+    )
+    .v[0]
+}
+
+/// The material interface's view of a scratch-space position and an optional footprint
+/// (`fp.a1 = 0`: none).
+#[inline]
+pub fn shading_point(x: Vec2, fp: &Ellipse) -> ShadingPoint {
+    if fp.a1 > 0.0 {
+        ShadingPoint::with_footprint(x.to_array(), *fp)
+    } else {
+        ShadingPoint::at(x.to_array())
     }
-    let mut f = velinov_footprint_brdf(&m.table, &m.material, wi, wo, fp, lambda_nm, set);
-    if BaseKind::from_u32(m.base) == BaseKind::Ghs {
-        let g = table::evaluate_ghs(&m.ghs, &query(m, wi, wo, x, lambda_nm));
-        if g > 0.0 {
-            f += base_weight(m, x, set) * g;
-        }
-    }
-    f
+}
+
+/// The scene material's BRDF at every wavelength of `wl` in one scratch walk: the material
+/// interface's [`bsdf::eval`] of [`BsdfMaterial::from_shade`].
+pub fn brdf_spectrum<S: ScratchSet>(
+    m: &ShadeMaterial,
+    wi: Vec3,
+    wo: Vec3,
+    sp: &ShadingPoint,
+    wl: &Wavelengths,
+    set: &S,
+) -> Spectrum {
+    bsdf::eval(
+        &BsdfMaterial::from_shade(m),
+        sp,
+        wi,
+        wo,
+        wl,
+        &Lookup::new(set),
+    )
 }
 
 /// Radiance towards `wo` from a point light (`light.kind` Point) or a directional light,
 /// unoccluded: `f·max(cos θi, 0)·I/d²` or `f·max(cos θi, 0)·E`; `fp` is the pixel
-/// footprint ([`brdf_footprint`]; `a1 = 0` for the point model).
+/// footprint ([`brdf_footprint`]; `a1 = 0` for the point model). [`delta_light_spectrum`]
+/// at one wavelength.
 pub fn delta_light<S: ScratchSet>(
     m: &ShadeMaterial,
     sp: &SurfacePoint,
@@ -160,6 +179,19 @@ pub fn delta_light<S: ScratchSet>(
     set: &S,
     fp: &Ellipse,
 ) -> f32 {
+    delta_light_spectrum(m, sp, wo, light, &Wavelengths::single(lambda_nm), set, fp).v[0]
+}
+
+/// [`delta_light`] at every wavelength of `wl` (one scratch walk).
+pub fn delta_light_spectrum<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    light: &SceneLight,
+    wl: &Wavelengths,
+    set: &S,
+    fp: &Ellipse,
+) -> Spectrum {
     let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
     let (wi_world, scale) = if SceneLightKind::from_u32(light.kind) == SceneLightKind::Directional {
         (p0.normalize_or_zero(), light.emission)
@@ -167,15 +199,21 @@ pub fn delta_light<S: ScratchSet>(
         let d = p0 - sp.position;
         let d2 = d.length_squared();
         if !(d2 > 0.0) {
-            return 0.0;
+            return Spectrum::ZERO;
         }
         (d / math::sqrt(d2), light.emission / d2)
     };
     let wi = sp.to_local(wi_world);
     if !(wi.z > 0.0) {
-        return 0.0;
+        return Spectrum::ZERO;
     }
-    brdf_footprint(m, wi, wo, sp.x_um, fp, lambda_nm, set) * wi.z * scale
+    let mut f = brdf_spectrum(m, wi, wo, &shading_point(sp.x_um, fp), wl, set);
+    let mut j = 0;
+    while j < MAX_LAMBDAS {
+        f.v[j] = f.v[j] * wi.z * scale;
+        j += 1;
+    }
+    f
 }
 
 /// One quadrature node's radiance towards `wo`: `f·max(cos θi, 0)·L·dω` (the shadow ray is
@@ -189,11 +227,39 @@ pub fn area_node_radiance<S: ScratchSet>(
     lambda_nm: f32,
     set: &S,
 ) -> f32 {
+    area_node_radiance_spectrum(
+        m,
+        sp,
+        wo,
+        node,
+        radiance,
+        &Wavelengths::single(lambda_nm),
+        set,
+    )
+    .v[0]
+}
+
+/// [`area_node_radiance`] at every wavelength of `wl` (one scratch walk).
+pub fn area_node_radiance_spectrum<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    node: &AreaNode,
+    radiance: f32,
+    wl: &Wavelengths,
+    set: &S,
+) -> Spectrum {
     let wi = sp.to_local(node.dir);
     if !(wi.z > 0.0) {
-        return 0.0;
+        return Spectrum::ZERO;
     }
-    brdf(m, wi, wo, sp.x_um, lambda_nm, set) * wi.z * radiance * node.weight
+    let mut f = brdf_spectrum(m, wi, wo, &ShadingPoint::at(sp.x_um.to_array()), wl, set);
+    let mut j = 0;
+    while j < MAX_LAMBDAS {
+        f.v[j] = f.v[j] * wi.z * radiance * node.weight;
+        j += 1;
+    }
+    f
 }
 
 /// Whether `m` integrates area lights in closed form ([`velinov_area_light`]) rather than
