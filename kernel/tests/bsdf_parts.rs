@@ -1,7 +1,8 @@
 //! The BSDF interface's parts against independent references: the scaled Bessel function
 //! against quadrature, the truncated 1-D lobes against numerical integration, the shading
-//! frame and wavelength sets, and `eval` against the renderer's `brdf`/`brdf_footprint` and
-//! the table's `evaluate` (one shared scratch walk must change nothing, bit for bit).
+//! frame and wavelength sets, and multi-wavelength `eval` against the renderer's
+//! single-wavelength `brdf`/`brdf_footprint` and the table's `evaluate` (one shared scratch
+//! walk must change nothing, bit for bit).
 // Per-wavelength arrays are walked in step by index.
 #![allow(clippy::needless_range_loop)]
 
