@@ -2,7 +2,7 @@
 //! towards the viewer. Directions are in the shading frame (`z` = normal), `wo` towards the
 //! viewer, `wi` towards the light.
 //!
-//! * The BRDF is the material interface's [`bsdf::eval`] (one scratch walk for up to four
+//! * The BRDF is the material interface's [`bsdf::eval()`] (one scratch walk for up to four
 //!   wavelengths), whose scratch models equal [`table::evaluate`] (the `table` command's
 //!   function) bit for bit; GHS is [`table::evaluate_ghs`].
 //! * `werner_blended` and `velinov` with a GHS base add `(1 − ρc)·f_base` (Werner 2017 §5;
@@ -147,7 +147,7 @@ pub fn shading_point(x: Vec2, fp: &Ellipse) -> ShadingPoint {
 }
 
 /// The scene material's BRDF at every wavelength of `wl` in one scratch walk: the material
-/// interface's [`bsdf::eval`] of [`BsdfMaterial::from_shade`].
+/// interface's [`bsdf::eval()`] of [`BsdfMaterial::from_shade`].
 pub fn brdf_spectrum<S: ScratchSet>(
     m: &ShadeMaterial,
     wi: Vec3,
