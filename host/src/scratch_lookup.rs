@@ -34,10 +34,7 @@ impl ScratchLookup {
 
     /// The kernel view (what the models and the GPU upload take).
     pub fn set(&self) -> ScratchBvh<'_> {
-        ScratchBvh {
-            nodes: &self.nodes,
-            scratches: &self.scratches,
-        }
+        ScratchBvh::new(&self.nodes, &self.scratches)
     }
 
     /// Nodes in depth-first order.
@@ -145,7 +142,7 @@ impl ScratchLookup {
                 nx: nx as u32,
                 ny: ny as u32,
                 radius,
-                pad: 0,
+                first_offset: 0,
             },
             offsets,
             items,

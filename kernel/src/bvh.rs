@@ -268,9 +268,23 @@ pub struct BvhCursor {
 pub fn next_slot<E: FnMut(&Aabb) -> bool>(
     nodes: &[BvhNode],
     cursor: &mut BvhCursor,
+    enter: E,
+) -> Option<u32> {
+    next_slot_before(nodes, nodes.len(), cursor, enter)
+}
+
+/// [`next_slot`] over the hierarchy that ends before node `end` (`min(end, nodes.len())`).
+/// Several hierarchies can share one node array this way (a GPU binds one buffer for all
+/// of a scene's materials): each starts its cursor at its own first node and ends at the
+/// next one's, with skip indices counted in the shared array.
+#[inline]
+pub fn next_slot_before<E: FnMut(&Aabb) -> bool>(
+    nodes: &[BvhNode],
+    end: usize,
+    cursor: &mut BvhCursor,
     mut enter: E,
 ) -> Option<u32> {
-    let n = nodes.len();
+    let n = if end < nodes.len() { end } else { nodes.len() };
     loop {
         if cursor.slot < cursor.end {
             let s = cursor.slot;
@@ -304,9 +318,24 @@ pub fn next_near_point(
     p: [f32; 3],
     radius: f32,
 ) -> Option<u32> {
+    next_near_point_before(nodes, nodes.len(), cursor, p, radius)
+}
+
+/// [`next_near_point`] over the hierarchy that ends before node `end` (see
+/// [`next_slot_before`]).
+#[inline]
+pub fn next_near_point_before(
+    nodes: &[BvhNode],
+    end: usize,
+    cursor: &mut BvhCursor,
+    p: [f32; 3],
+    radius: f32,
+) -> Option<u32> {
     let r = radius * (1.0 + RADIUS_SLACK);
     let r2 = r * r;
-    next_slot(nodes, cursor, move |b: &Aabb| b.distance2_to_point(p) <= r2)
+    next_slot_before(nodes, end, cursor, move |b: &Aabb| {
+        b.distance2_to_point(p) <= r2
+    })
 }
 
 /// Relative slack applied to query radii so that rounding in the box test can only add

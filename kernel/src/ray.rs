@@ -6,9 +6,8 @@
 //! geometric normal up to rounding. Hits are ordered by `t`, then by primitive id, so a
 //! closest-hit query has one answer regardless of traversal order ([`is_closer`]).
 
-use crate::bvh::{Aabb, BvhNode, BvhVisitor, traverse};
+use crate::bvh::{Aabb, BvhCursor, BvhNode, next_slot};
 use bytemuck::{Pod, Zeroable};
-use core::ops::ControlFlow;
 use glam::Vec3;
 
 /// A ray `origin + t·dir` for `t ∈ (t_near, t_far]`. `dir` need not be normalized; `t` is in
@@ -218,98 +217,65 @@ impl RayBoxTest {
     }
 }
 
-struct ClosestHit<'a> {
-    ray: Ray,
-    boxes: RayBoxTest,
-    triangles: &'a [Triangle],
-    prim_ids: &'a [u32],
-    best: Hit,
-}
-
-impl BvhVisitor for ClosestHit<'_> {
-    #[inline]
-    fn enter(&mut self, bounds: &Aabb) -> bool {
-        self.boxes.hits(bounds, self.best.t)
-    }
-
-    #[inline]
-    fn primitive(&mut self, slot: u32) -> ControlFlow<()> {
-        let s = slot as usize;
-        if let (Some(tri), Some(&prim_id)) = (self.triangles.get(s), self.prim_ids.get(s))
-            && let Some(h) = intersect_triangle(&self.ray, tri, self.best.t)
-        {
-            let hit = h.to_hit(0, prim_id);
-            if is_closer(&hit, &self.best) {
-                self.best = hit;
-            }
-        }
-        ControlFlow::Continue(())
-    }
-}
-
 /// The closest hit of `ray` with the triangles of a hierarchy.
 ///
 /// `triangles[slot]` and `prim_ids[slot]` are in the builder's primitive order; the hit
 /// reports `prim_ids[slot]` and `geom_id` 0. Ties in `t` go to the smaller primitive id.
+///
+/// A cursor loop over [`next_slot`] with a `move` closure that copies the current closest
+/// `t` (no captured references, so it compiles for SPIR-V as well).
 pub fn closest_hit(
     nodes: &[BvhNode],
     triangles: &[Triangle],
     prim_ids: &[u32],
     ray: &Ray,
 ) -> Option<Hit> {
-    let mut visitor = ClosestHit {
-        ray: *ray,
-        boxes: RayBoxTest::new(ray),
-        triangles,
-        prim_ids,
-        best: Hit {
-            ng: [0.0; 3],
-            t: ray.t_far,
-            u: 0.0,
-            v: 0.0,
-            geom_id: INVALID_ID,
-            prim_id: INVALID_ID,
-        },
+    let boxes = RayBoxTest::new(ray);
+    let mut best = Hit {
+        ng: [0.0; 3],
+        t: ray.t_far,
+        u: 0.0,
+        v: 0.0,
+        geom_id: INVALID_ID,
+        prim_id: INVALID_ID,
     };
-    let _ = traverse(nodes, &mut visitor);
-    if visitor.best.prim_id == INVALID_ID {
+    let mut cursor = BvhCursor::default();
+    loop {
+        let t_max = best.t;
+        let Some(slot) = next_slot(nodes, &mut cursor, move |b: &Aabb| boxes.hits(b, t_max))
+        else {
+            break;
+        };
+        let s = slot as usize;
+        if s < triangles.len()
+            && s < prim_ids.len()
+            && let Some(h) = intersect_triangle(ray, &triangles[s], best.t)
+        {
+            let hit = h.to_hit(0, prim_ids[s]);
+            if is_closer(&hit, &best) {
+                best = hit;
+            }
+        }
+    }
+    if best.prim_id == INVALID_ID {
         None
     } else {
-        Some(visitor.best)
-    }
-}
-
-struct AnyHit<'a> {
-    ray: Ray,
-    boxes: RayBoxTest,
-    triangles: &'a [Triangle],
-}
-
-impl BvhVisitor for AnyHit<'_> {
-    #[inline]
-    fn enter(&mut self, bounds: &Aabb) -> bool {
-        self.boxes.hits(bounds, self.ray.t_far)
-    }
-
-    #[inline]
-    fn primitive(&mut self, slot: u32) -> ControlFlow<()> {
-        match self.triangles.get(slot as usize) {
-            Some(tri) if intersect_triangle(&self.ray, tri, self.ray.t_far).is_some() => {
-                ControlFlow::Break(())
-            }
-            _ => ControlFlow::Continue(()),
-        }
+        Some(best)
     }
 }
 
 /// `true` if `ray` hits any triangle within `(t_near, t_far]` (a shadow-ray query).
 pub fn occluded(nodes: &[BvhNode], triangles: &[Triangle], ray: &Ray) -> bool {
-    let mut visitor = AnyHit {
-        ray: *ray,
-        boxes: RayBoxTest::new(ray),
-        triangles,
-    };
-    traverse(nodes, &mut visitor).is_break()
+    let boxes = RayBoxTest::new(ray);
+    let t_far = ray.t_far;
+    let mut cursor = BvhCursor::default();
+    while let Some(slot) = next_slot(nodes, &mut cursor, move |b: &Aabb| boxes.hits(b, t_far)) {
+        let s = slot as usize;
+        if s < triangles.len() && intersect_triangle(ray, &triangles[s], t_far).is_some() {
+            return true;
+        }
+    }
+    false
 }
 
 #[cfg(test)]

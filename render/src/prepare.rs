@@ -6,6 +6,7 @@ use scratchwave_host::{GridData, ScratchLookup, TriangleBvh};
 use scratchwave_kernel::math;
 use scratchwave_kernel::ray::Triangle;
 use scratchwave_kernel::render::area::{SceneLight, SceneLightKind};
+use scratchwave_kernel::render::radiance::SceneGeometry;
 use scratchwave_kernel::render::shading::ShadeMaterial;
 use scratchwave_kernel::render::surface::{Surface, SurfaceKind, TriangleUv};
 use scratchwave_kernel::scratch::{GridHeader, ScratchGrid};
@@ -261,6 +262,16 @@ pub fn prepare(scene: &Scene) -> Prepared {
 }
 
 impl Prepared {
+    /// The shapes a hit refers to, as the kernel's light loop reads them.
+    pub fn geometry(&self) -> SceneGeometry<'_> {
+        SceneGeometry {
+            triangles: &self.triangles,
+            uvs: &self.uvs,
+            prim_object: &self.prim_object,
+            surfaces: &self.surfaces,
+        }
+    }
+
     /// The portable kernel BVH over the triangles.
     pub fn cpu_bvh(&self) -> TriangleBvh {
         TriangleBvh::from_triangles(&self.triangles)

@@ -3,25 +3,18 @@
 //! only ([`scratchwave_kernel::render`]).
 
 use crate::prepare::Prepared;
+use crate::scene::Footprint;
 use crate::scene::Scene;
-use crate::scene::{Footprint, Shadows};
 use rayon::prelude::*;
 use scratchwave_host::{Coherence, RayQueries};
-use scratchwave_kernel::bsdf::Wavelengths;
-use scratchwave_kernel::footprint::Ellipse;
-use scratchwave_kernel::glam::Vec3;
-use scratchwave_kernel::lights::MAX_LAMBDAS;
-use scratchwave_kernel::ray::{Hit, Ray};
-use scratchwave_kernel::render::area::{self, SceneLight, SceneLightKind};
+use scratchwave_kernel::bsdf::Lookup;
+use scratchwave_kernel::ray::Ray;
 use scratchwave_kernel::render::camera::Camera;
-use scratchwave_kernel::render::camera::RayDifferential;
-use scratchwave_kernel::render::footprint::footprint_ellipse;
 use scratchwave_kernel::render::pixel::sample_offset;
-use scratchwave_kernel::render::shading::{self, ShadeMaterial};
-use scratchwave_kernel::render::spectrum::{self, SpectrumMode};
-use scratchwave_kernel::render::surface::{
-    SurfaceKind, SurfacePoint, hit_position, mesh_point, surface_point,
+use scratchwave_kernel::render::radiance::{
+    FirstRays, FrameParams, HitPoint, Occlusion, ShadeCounts, first_rays, hit_point, shade_light,
 };
+use scratchwave_kernel::render::spectrum;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
@@ -140,7 +133,8 @@ fn render_tile<Q: RayQueries + ?Sized>(
     counters: &Counters,
 ) -> Vec<[f32; 3]> {
     let (w, h) = (cam.width_px, cam.height_px);
-    let spp = scene.settings.spp.max(1);
+    let frame = frame_params(scene, prep);
+    let spp = frame.spp;
     let mut pixels = Vec::new();
     for j in ty * TILE..((ty + 1) * TILE).min(h) {
         for i in tx * TILE..((tx + 1) * TILE).min(w) {
@@ -157,365 +151,90 @@ fn render_tile<Q: RayQueries + ?Sized>(
             diffs.push(rd);
         }
     }
-    let footprint_scale = if scene.settings.footprint == Footprint::Ellipse {
-        1.0 / (spp as f32).sqrt()
-    } else {
-        0.0
-    };
+    let footprint_scale = frame.footprint_scale();
     let mut hits = vec![None; rays.len()];
     queries.closest_hits(&rays, &mut hits, Coherence::Coherent);
-    let spec = scene.spectrum;
-    let n_lambda = spectrum::wavelength_count(spec.mode, spec.samples);
-    let y_norm = if spec.mode == SpectrumMode::Spectral {
-        spectrum::y_normalisation(spec.samples)
-    } else {
-        1.0
-    };
-    let shadows = scene.settings.shadows;
+    let geo = prep.geometry();
     // Phase 1: the shading point of every hit and the first shadow rays of every light
     // (delta lights: their one ray; area lights: their probes), in (sample, light) order.
     let mut points: Vec<Option<HitPoint>> = Vec::with_capacity(rays.len());
-    let mut first: Vec<Ray> = Vec::new();
-    let mut slots: Vec<(u32, u32)> = Vec::new();
+    let mut first: Vec<FirstRays> = Vec::new();
+    let mut batch: Vec<Ray> = Vec::new();
     for (idx, hit) in hits.iter().enumerate() {
         let point = hit
             .as_ref()
-            .and_then(|h| hit_point(prep, &diffs[idx], footprint_scale, h));
+            .and_then(|h| hit_point(&geo, &diffs[idx], footprint_scale, h));
         if let Some(hp) = &point {
             for light in &prep.lights {
-                let start = first.len() as u32;
-                first_rays(hp, light, shadows, &mut first);
-                slots.push((start, first.len() as u32 - start));
+                let f = first_rays(hp, light, frame.shadow_mode());
+                batch.extend_from_slice(&f.rays[..f.count as usize]);
+                first.push(f);
             }
         }
         points.push(point);
     }
     // Phase 2: all of them at once (Embree traces neighbouring pixels' rays towards one
     // light as packets).
-    let mut blocked = vec![false; first.len()];
-    queries.occluded_many(&first, &mut blocked, Coherence::Coherent);
-    let mut shadow_rays = first.len() as u64;
+    let mut blocked = vec![false; batch.len()];
+    queries.occluded_many(&batch, &mut blocked, Coherence::Coherent);
     // Phase 3: shading, in the same order.
-    let mut shading_evals = 0u64;
+    let occ = QueryOcclusion(queries);
+    let mut counts = ShadeCounts::default();
     let mut out = Vec::with_capacity(pixels.len());
-    let mut slot = 0usize;
-    let lambda = |k: u32| spectrum::wavelength_nm(spec.mode, k, spec.samples, spec.lambda_nm);
-    let ctx = Ctx {
-        prep,
-        shadows,
-        mode: spec.mode,
-        n_lambda,
-        lambda: &lambda,
-    };
+    let (mut slot, mut ray) = (0usize, 0usize);
     for (p, _) in pixels.iter().enumerate() {
         let mut acc = [0.0f32; 3];
         for k in 0..spp as usize {
-            let idx = p * spp as usize + k;
-            let Some(hp) = &points[idx] else {
+            let Some(hp) = &points[p * spp as usize + k] else {
                 continue;
             };
+            let m = &prep.materials[hp.material as usize];
+            let lk = Lookup::new(prep.scratch_set(hp.material as usize));
             for light in &prep.lights {
-                let (start, count) = slots[slot];
+                let f = &first[slot];
                 slot += 1;
-                let first_blocked = &blocked[start as usize..(start + count) as usize];
-                shade_light(
-                    &ctx,
-                    queries,
-                    hp,
-                    light,
-                    first_blocked,
-                    &mut acc,
-                    &mut shading_evals,
-                    &mut shadow_rays,
-                );
+                let mut bits = 0u32;
+                for (r, &b) in blocked[ray..ray + f.count as usize].iter().enumerate() {
+                    bits |= u32::from(b) << r;
+                }
+                ray += f.count as usize;
+                counts.shadow_rays += f.count;
+                shade_light(&frame, m, &lk, hp, light, f, bits, &occ, &mut acc, &mut counts);
             }
         }
-        let rgb = spectrum::finish(spec.mode, acc, y_norm);
+        let rgb = spectrum::finish(frame.mode(), acc, frame.y_norm);
         let inv = 1.0 / spp as f32;
         out.push([rgb[0] * inv, rgb[1] * inv, rgb[2] * inv]);
     }
-    counters.shading.fetch_add(shading_evals, Ordering::Relaxed);
-    counters.shadow.fetch_add(shadow_rays, Ordering::Relaxed);
+    counters
+        .shading
+        .fetch_add(u64::from(counts.shading), Ordering::Relaxed);
+    counters
+        .shadow
+        .fetch_add(u64::from(counts.shadow_rays), Ordering::Relaxed);
     out
 }
 
-/// What shading one light at one hit needs besides the light.
-struct Ctx<'a> {
-    prep: &'a Prepared,
-    shadows: Shadows,
-    mode: SpectrumMode,
-    n_lambda: u32,
-    lambda: &'a dyn Fn(u32) -> f32,
-}
-
-/// A hit seen from the camera, ready to shade.
-struct HitPoint {
-    sp: SurfacePoint,
-    wo: Vec3,
-    ng: Vec3,
-    fp: Ellipse,
-    material: usize,
-}
-
-/// The shading point of a primary hit; `None` for a back-facing or unknown primitive.
-fn hit_point(
-    prep: &Prepared,
-    rd: &RayDifferential,
-    footprint_scale: f32,
-    hit: &Hit,
-) -> Option<HitPoint> {
-    let &object = prep.prim_object.get(hit.prim_id as usize)?;
-    let surface = &prep.surfaces[object as usize];
-    let ray = &rd.ray;
-    let p = hit_position(ray.origin, ray.dir, hit.t);
-    let sp: SurfacePoint = if SurfaceKind::from_u32(surface.kind) == SurfaceKind::Mesh {
-        let prim = hit.prim_id as usize;
-        mesh_point(
-            &prep.triangles[prim],
-            &prep.uvs[prim],
-            hit.u,
-            hit.v,
-            p,
-            surface.scale_um,
-        )
-    } else {
-        surface_point(surface, p)
-    };
-    let wo = sp.to_local(-Vec3::from_array(ray.dir).normalize_or_zero());
-    if !(wo.z > 0.0) {
-        return None;
-    }
-    let fp = if footprint_scale > 0.0 {
-        footprint_ellipse(rd, hit.t, &sp, footprint_scale)
-    } else {
-        Ellipse::default()
-    };
-    Some(HitPoint {
-        sp,
-        wo,
-        ng: Vec3::from_array(hit.ng),
-        fp,
-        material: surface.material as usize,
-    })
-}
-
-/// Wavelengths `k0..` of the render's spectrum, at most [`MAX_LAMBDAS`] of them.
-fn wavelength_group(ctx: &Ctx, k0: u32) -> Wavelengths {
-    let count = (ctx.n_lambda - k0).min(MAX_LAMBDAS as u32);
-    let mut wl = Wavelengths {
-        count,
-        ..Wavelengths::default()
-    };
-    for j in 0..count as usize {
-        wl.nm[j] = (ctx.lambda)(k0 + j as u32);
-        wl.pdf[j] = 1.0;
-    }
-    wl
-}
-
-/// Unit direction towards a point or directional light and the shadow ray's extent.
-fn delta_direction(light: &SceneLight, sp: &SurfacePoint) -> (Vec3, f32) {
-    let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
-    if SceneLightKind::from_u32(light.kind) == SceneLightKind::Directional {
-        (p0.normalize_or_zero(), f32::INFINITY)
-    } else {
-        let d = p0 - sp.position;
-        let l = d.length();
-        (d / l, l)
-    }
-}
-
-/// Whether `light` is a point or directional light.
-fn is_delta(light: &SceneLight) -> bool {
-    matches!(
-        SceneLightKind::from_u32(light.kind),
-        SceneLightKind::Point | SceneLightKind::Directional
+/// The kernel's frame record of `scene` (camera, samples, footprint, shadows, spectrum).
+pub fn frame_params(scene: &Scene, prep: &Prepared) -> FrameParams {
+    let spec = scene.spectrum;
+    FrameParams::new(
+        scene.camera,
+        scene.settings.spp,
+        scene.settings.footprint == Footprint::Ellipse,
+        scene.settings.shadows,
+        spec.mode,
+        spec.samples,
+        spec.lambda_nm,
+        prep.lights.len() as u32,
     )
 }
 
-/// Appends the shadow rays `light` needs first at `hp`: a delta light's one ray (if above
-/// the horizon); an area light's probes above the horizon (adaptive shadows only).
-fn first_rays(hp: &HitPoint, light: &SceneLight, shadows: Shadows, out: &mut Vec<Ray>) {
-    let sp = &hp.sp;
-    if is_delta(light) {
-        let (dir, dist) = delta_direction(light, sp);
-        if sp.to_local(dir).z > 0.0 {
-            out.push(shading::shadow_ray(sp.position, hp.ng, dir, dist));
-        }
-    } else if shadows == Shadows::Adaptive && !area::below_horizon(light, sp.position, sp.z) {
-        for node in area::probe_nodes(light, sp.position).iter().flatten() {
-            if sp.to_local(node.dir).z > 0.0 {
-                out.push(shading::shadow_ray(sp.position, hp.ng, node.dir, node.dist));
-            }
-        }
-    }
-}
+/// Shadow rays through a [`RayQueries`].
+struct QueryOcclusion<'q, Q: ?Sized>(&'q Q);
 
-/// Shades one light at one hit into the spectral accumulator `acc`, given the answers to
-/// its first shadow rays ([`first_rays`]).
-#[allow(clippy::too_many_arguments)]
-fn shade_light<Q: RayQueries + ?Sized>(
-    ctx: &Ctx,
-    queries: &Q,
-    hp: &HitPoint,
-    light: &SceneLight,
-    first_blocked: &[bool],
-    acc: &mut [f32; 3],
-    shading_evals: &mut u64,
-    shadow_rays: &mut u64,
-) {
-    let m: &ShadeMaterial = &ctx.prep.materials[hp.material];
-    let set = ctx.prep.scratch_set(hp.material);
-    if is_delta(light) {
-        // No ray (below the horizon) or a blocked one: nothing arrives.
-        if first_blocked != [false] {
-            return;
-        }
-        // Wavelengths in groups of MAX_LAMBDAS: one scratch walk per group.
-        let mut k0 = 0;
-        while k0 < ctx.n_lambda {
-            let wl = wavelength_group(ctx, k0);
-            let l = shading::delta_light_spectrum(m, &hp.sp, hp.wo, light, &wl, &set, &hp.fp);
-            for j in 0..wl.count {
-                *shading_evals += 1;
-                spectrum::accumulate(ctx.mode, k0 + j, wl.nm[j as usize], l.v[j as usize], acc);
-            }
-            k0 += wl.count;
-        }
-        return;
-    }
-    let consensus = if ctx.shadows == Shadows::Adaptive {
-        if area::below_horizon(light, hp.sp.position, hp.sp.z) {
-            return;
-        }
-        let lit = first_blocked.iter().filter(|&&b| !b).count();
-        if !first_blocked.is_empty() && (lit == 0 || lit == first_blocked.len()) {
-            Some(lit > 0)
-        } else {
-            None
-        }
-    } else {
-        None
-    };
-    area_light(
-        m,
-        hp,
-        light,
-        queries,
-        consensus,
-        ctx,
-        &set,
-        acc,
-        shading_evals,
-        shadow_rays,
-    );
-}
-
-/// A sphere or triangle light: the visible fraction from `consensus` (its probes agreed:
-/// wholly visible or hidden) or, without one, from a shadow ray to every quadrature node;
-/// then the closed form (velinov) scaled by the visible fraction, or the quadrature over the
-/// visible nodes.
-#[allow(clippy::too_many_arguments)]
-fn area_light<Q: RayQueries + ?Sized, S: scratchwave_kernel::scratch::ScratchSet>(
-    m: &ShadeMaterial,
-    hp: &HitPoint,
-    light: &SceneLight,
-    queries: &Q,
-    consensus: Option<bool>,
-    ctx: &Ctx,
-    set: &S,
-    acc: &mut [f32; 3],
-    shading_evals: &mut u64,
-    shadow_rays: &mut u64,
-) {
-    let (sp, wo, fp) = (&hp.sp, hp.wo, &hp.fp);
-    let occluded = |node: &area::AreaNode, rays: &mut u64| {
-        *rays += 1;
-        queries.occluded(&shading::shadow_ray(
-            sp.position,
-            hp.ng,
-            node.dir,
-            node.dist,
-        ))
-    };
-    let nodes = shading::needs_area_nodes(m);
-    if consensus == Some(false) {
-        return;
-    }
-    let mut visible = [None; area::MAX_NODES as usize];
-    let (mut w_vis, mut w_all) = (1.0f32, 1.0f32);
-    if consensus.is_none() || nodes {
-        (w_vis, w_all) = (0.0, 0.0);
-        for i in 0..area::node_count(light) {
-            let Some(node) = area::area_node(light, sp.position, i) else {
-                continue;
-            };
-            if !(sp.to_local(node.dir).z > 0.0) {
-                continue;
-            }
-            w_all += node.weight;
-            let lit = match consensus {
-                Some(lit) => lit,
-                None => !occluded(&node, shadow_rays),
-            };
-            if lit {
-                w_vis += node.weight;
-                visible[i as usize] = Some(node);
-            }
-        }
-    }
-    if !(w_vis > 0.0) {
-        return;
-    }
-    let closed = shading::closed_form_area(m);
-    let scale = w_vis / w_all;
-    // Wavelengths in groups of MAX_LAMBDAS: one scratch walk per group (and per node).
-    let mut k0 = 0;
-    while k0 < ctx.n_lambda {
-        let wl = wavelength_group(ctx, k0);
-        let count = wl.count as usize;
-        let closed_l = if closed {
-            *shading_evals += count as u64;
-            shading::velinov_area_light(m, sp, wo, light, &wl.nm, count, set, fp)
-        } else {
-            [0.0; MAX_LAMBDAS]
-        };
-        // Per node, every wavelength of the group (quadrature models: one walk per node).
-        let mut node_l = [[0.0f32; MAX_LAMBDAS]; area::MAX_NODES as usize];
-        if nodes && !closed {
-            for (slot, node) in visible.iter().enumerate() {
-                if let Some(node) = node {
-                    node_l[slot] = shading::area_node_radiance_spectrum(
-                        m,
-                        sp,
-                        wo,
-                        node,
-                        light.emission,
-                        &wl,
-                        set,
-                    )
-                    .v;
-                }
-            }
-        }
-        for j in 0..count {
-            let lam = wl.nm[j];
-            let mut l = closed_l[j] * scale;
-            if nodes {
-                for (slot, node) in visible.iter().enumerate() {
-                    let Some(node) = node else {
-                        continue;
-                    };
-                    l += if closed {
-                        shading::base_node_radiance(m, sp, wo, node, light.emission, lam, set)
-                    } else {
-                        node_l[slot][j]
-                    };
-                    *shading_evals += 1;
-                }
-            }
-            spectrum::accumulate(ctx.mode, k0 + j as u32, lam, l, acc);
-        }
-        k0 += wl.count;
+impl<Q: RayQueries + ?Sized> Occlusion for QueryOcclusion<'_, Q> {
+    fn occluded(&self, ray: &Ray) -> bool {
+        self.0.occluded(ray)
     }
 }

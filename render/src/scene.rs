@@ -153,15 +153,9 @@ pub enum Footprint {
     Ellipse,
 }
 
-/// Shadow rays towards area lights.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Shadows {
-    /// The light's probe nodes first (`kernel::render::area::probe_count`); the other
-    /// nodes are traced only where the probes disagree (penumbrae).
-    Adaptive,
-    /// A shadow ray to every quadrature node.
-    AllNodes,
-}
+/// Shadow rays towards area lights: the kernel's
+/// [`ShadowMode`](scratchwave_kernel::render::radiance::ShadowMode).
+pub use scratchwave_kernel::render::radiance::ShadowMode as Shadows;
 
 /// How shading finds the scratches near a hit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -69,7 +69,7 @@ fn table_entry(
             model: model as u32,
             ..params[0]
         };
-        out[i] = table::evaluate(&params, &queries[i], &ScratchBvh { nodes, scratches });
+        out[i] = table::evaluate(&params, &queries[i], &ScratchBvh::new(nodes, scratches));
     }
 }
 
@@ -150,7 +150,7 @@ pub fn light(
 ) {
     let i = id.x as usize;
     if i < out.len() {
-        out[i] = light_integral(&params[0], &queries[i], &ScratchBvh { nodes, scratches });
+        out[i] = light_integral(&params[0], &queries[i], &ScratchBvh::new(nodes, scratches));
     }
 }
 
@@ -259,7 +259,7 @@ pub fn bsdf(
 ) {
     let i = id.x as usize;
     if i < out.len() {
-        let set = ScratchBvh { nodes, scratches };
+        let set = ScratchBvh::new(nodes, scratches);
         let lk = Lookup::with_g1_table(set, G1Table::from_flat(g1));
         out[i] = bsdf_probe::evaluate(&material[0], &lk, &queries[i]);
     }

@@ -9,6 +9,7 @@
 //! | `surface` | hit position, shading frame and scratch-space position of an object |
 //! | `shading` | the BRDF of a scene material and the contribution of each light kind |
 //! | `area` | deterministic quadrature nodes over sphere and triangle lights |
+//! | `radiance` | the light loop of a hit and the value of a pixel (first shadow rays, probes' consensus, wavelength groups) |
 //! | `spectrum` | wavelengths of a spectrum mode, CIE 1931 2° observer, XYZ → linear sRGB |
 //! | `pixel` | deterministic sub-pixel positions (rank-1 lattice, hashed rotation per pixel) |
 
@@ -16,6 +17,7 @@ pub mod area;
 pub mod camera;
 pub mod footprint;
 pub mod pixel;
+pub mod radiance;
 pub mod shading;
 pub mod spectrum;
 pub mod surface;

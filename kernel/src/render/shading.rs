@@ -4,7 +4,7 @@
 //!
 //! * The BRDF is the material interface's [`bsdf::eval()`] (one scratch walk for up to four
 //!   wavelengths), whose scratch models equal [`table::evaluate`] (the `table` command's
-//!   function) bit for bit; GHS is [`table::evaluate_ghs`].
+//!   function) bit for bit; GHS is [`table::evaluate_ghs_with_g1_table`].
 //! * `werner_blended` and `velinov` with a GHS base add `(1 − ρc)·f_base` (Werner 2017 §5;
 //!   Velinov 2018 Eq. 7's `(1 − ρc)` weight), ρc from [`scratch_area_density`].
 //! * Point light: `f·max(cos θi, 0)·I/d²`; directional: `f·max(cos θi, 0)·E`.
@@ -130,7 +130,7 @@ pub fn brdf_footprint<S: ScratchSet>(
         wo,
         &shading_point(x, fp),
         &Wavelengths::single(lambda_nm),
-        set,
+        &Lookup::new(set),
     )
     .v[0]
 }
@@ -154,60 +154,61 @@ pub fn brdf_spectrum<S: ScratchSet>(
     wo: Vec3,
     sp: &ShadingPoint,
     wl: &Wavelengths,
-    set: &S,
+    lk: &Lookup<'_, S>,
 ) -> Spectrum {
-    bsdf::eval(
-        &BsdfMaterial::from_shade(m),
-        sp,
-        wi,
-        wo,
-        wl,
-        &Lookup::new(set),
+    bsdf::eval(&BsdfMaterial::from_shade(m), sp, wi, wo, wl, lk)
+}
+
+/// Where a point or directional light is seen from `p`: the unit direction towards it
+/// (world frame), the shadow ray's extent (infinite for a directional light) and the
+/// irradiance scale (`I/d²` or `E`); `None` for a point light at `p` or any other kind.
+pub fn delta_direction(light: &SceneLight, p: Vec3) -> Option<(Vec3, f32, f32)> {
+    let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
+    match SceneLightKind::from_u32(light.kind) {
+        SceneLightKind::Directional => Some((p0.normalize_or_zero(), f32::INFINITY, light.emission)),
+        SceneLightKind::Point => {
+            let d = p0 - p;
+            let d2 = d.length_squared();
+            if !(d2 > 0.0) {
+                return None;
+            }
+            let dist = math::sqrt(d2);
+            Some((d / dist, dist, light.emission / d2))
+        }
+        _ => None,
+    }
+}
+
+/// Whether `light` is a point or directional light.
+#[inline]
+pub fn is_delta(light: &SceneLight) -> bool {
+    matches!(
+        SceneLightKind::from_u32(light.kind),
+        SceneLightKind::Point | SceneLightKind::Directional
     )
 }
 
 /// Radiance towards `wo` from a point light (`light.kind` Point) or a directional light,
-/// unoccluded: `f·max(cos θi, 0)·I/d²` or `f·max(cos θi, 0)·E`; `fp` is the pixel
-/// footprint ([`brdf_footprint`]; `a1 = 0` for the point model). [`delta_light_spectrum`]
-/// at one wavelength.
-pub fn delta_light<S: ScratchSet>(
-    m: &ShadeMaterial,
-    sp: &SurfacePoint,
-    wo: Vec3,
-    light: &SceneLight,
-    lambda_nm: f32,
-    set: &S,
-    fp: &Ellipse,
-) -> f32 {
-    delta_light_spectrum(m, sp, wo, light, &Wavelengths::single(lambda_nm), set, fp).v[0]
-}
-
-/// [`delta_light`] at every wavelength of `wl` (one scratch walk).
+/// unoccluded, at every wavelength of `wl` (one scratch walk): `f·max(cos θi, 0)·I/d²` or
+/// `f·max(cos θi, 0)·E`; `fp` is the pixel footprint ([`brdf_footprint`]; `a1 = 0` for the
+/// point model).
 pub fn delta_light_spectrum<S: ScratchSet>(
     m: &ShadeMaterial,
     sp: &SurfacePoint,
     wo: Vec3,
     light: &SceneLight,
     wl: &Wavelengths,
-    set: &S,
+    lk: &Lookup<'_, S>,
     fp: &Ellipse,
 ) -> Spectrum {
-    let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
-    let (wi_world, scale) = if SceneLightKind::from_u32(light.kind) == SceneLightKind::Directional {
-        (p0.normalize_or_zero(), light.emission)
-    } else {
-        let d = p0 - sp.position;
-        let d2 = d.length_squared();
-        if !(d2 > 0.0) {
-            return Spectrum::ZERO;
-        }
-        (d / math::sqrt(d2), light.emission / d2)
+    let Some((wi_world, _, scale)) = delta_direction(light, sp.position) else {
+        return Spectrum::ZERO;
     };
     let wi = sp.to_local(wi_world);
     if !(wi.z > 0.0) {
         return Spectrum::ZERO;
     }
-    let mut f = brdf_spectrum(m, wi, wo, &shading_point(sp.x_um, fp), wl, set);
+    let mut f = brdf_spectrum(m, wi, wo, &shading_point(sp.x_um, fp), wl, lk);
     let mut j = 0;
     while j < MAX_LAMBDAS {
         f.v[j] = f.v[j] * wi.z * scale;
@@ -216,30 +217,8 @@ pub fn delta_light_spectrum<S: ScratchSet>(
     f
 }
 
-/// One quadrature node's radiance towards `wo`: `f·max(cos θi, 0)·L·dω` (the shadow ray is
-/// the caller's).
-pub fn area_node_radiance<S: ScratchSet>(
-    m: &ShadeMaterial,
-    sp: &SurfacePoint,
-    wo: Vec3,
-    node: &AreaNode,
-    radiance: f32,
-    lambda_nm: f32,
-    set: &S,
-) -> f32 {
-    area_node_radiance_spectrum(
-        m,
-        sp,
-        wo,
-        node,
-        radiance,
-        &Wavelengths::single(lambda_nm),
-        set,
-    )
-    .v[0]
-}
-
-/// [`area_node_radiance`] at every wavelength of `wl` (one scratch walk).
+/// One quadrature node's radiance towards `wo` at every wavelength of `wl` (one scratch
+/// walk): `f·max(cos θi, 0)·L·dω` (the shadow ray is the caller's).
 pub fn area_node_radiance_spectrum<S: ScratchSet>(
     m: &ShadeMaterial,
     sp: &SurfacePoint,
@@ -247,13 +226,13 @@ pub fn area_node_radiance_spectrum<S: ScratchSet>(
     node: &AreaNode,
     radiance: f32,
     wl: &Wavelengths,
-    set: &S,
+    lk: &Lookup<'_, S>,
 ) -> Spectrum {
     let wi = sp.to_local(node.dir);
     if !(wi.z > 0.0) {
         return Spectrum::ZERO;
     }
-    let mut f = brdf_spectrum(m, wi, wo, &ShadingPoint::at(sp.x_um.to_array()), wl, set);
+    let mut f = brdf_spectrum(m, wi, wo, &ShadingPoint::at(sp.x_um.to_array()), wl, lk);
     let mut j = 0;
     while j < MAX_LAMBDAS {
         f.v[j] = f.v[j] * wi.z * radiance * node.weight;
@@ -263,7 +242,7 @@ pub fn area_node_radiance_spectrum<S: ScratchSet>(
 }
 
 /// Whether `m` integrates area lights in closed form ([`velinov_area_light`]) rather than
-/// by quadrature ([`area_node_radiance`]).
+/// by quadrature ([`area_node_radiance_spectrum`]).
 #[inline]
 pub fn closed_form_area(m: &ShadeMaterial) -> bool {
     SceneModel::from_u32(m.model) == SceneModel::Velinov
@@ -313,9 +292,10 @@ pub fn velinov_area_light<S: ScratchSet>(
     light: &SceneLight,
     lambdas_nm: &[f32; MAX_LAMBDAS],
     count: usize,
-    set: &S,
+    lk: &Lookup<'_, S>,
     fp: &Ellipse,
 ) -> [f32; MAX_LAMBDAS] {
+    let set = &lk.scratches;
     let kl = local_light(sp, light);
     let params = LightParams {
         sigma_um: m.table.sigma_um,
@@ -369,7 +349,7 @@ pub fn base_node_radiance<S: ScratchSet>(
     node: &AreaNode,
     radiance: f32,
     lambda_nm: f32,
-    set: &S,
+    lk: &Lookup<'_, S>,
 ) -> f32 {
     if BaseKind::from_u32(m.base) != BaseKind::Ghs {
         return 0.0;
@@ -379,8 +359,8 @@ pub fn base_node_radiance<S: ScratchSet>(
         return 0.0;
     }
     let q = query(m, wi, wo, sp.x_um, lambda_nm);
-    let g = table::evaluate_ghs(&m.ghs, &q);
-    base_weight(m, sp.x_um, set) * g * wi.z * radiance * node.weight
+    let g = table::evaluate_ghs_with_g1_table(&m.ghs, lk.g1, &q);
+    base_weight(m, sp.x_um, &lk.scratches) * g * wi.z * radiance * node.weight
 }
 
 /// The shadow ray from `p` (offset along the geometric normal `ng` to the side of `dir`)

@@ -26,13 +26,14 @@ pub struct GridHeader {
     /// The largest query radius the cell lists answer (µm); queries with a larger radius,
     /// and every query when this is not positive, go to the BVH.
     pub radius: f32,
-    /// Explicit padding.
-    pub pad: u32,
+    /// Where cell 0's list start is in `offsets` (0 unless several grids share one
+    /// buffer, as on the GPU; see [`super::ScratchBvh`]).
+    pub first_offset: u32,
 }
 
 const _: () = assert!(core::mem::size_of::<GridHeader>() == 32);
 
-/// The kernel view of a scratch grid: cell `c = iy·nx + ix` lists
+/// The kernel view of a scratch grid: cell `c = first_offset + iy·nx + ix` lists
 /// `items[offsets[c]..offsets[c + 1]]`, indices into `scratches` (the BVH's slot order).
 #[derive(Clone, Copy, Debug)]
 pub struct ScratchGrid<'a> {
@@ -61,7 +62,7 @@ impl ScratchGrid<'_> {
         if ix >= h.nx || iy >= h.ny {
             return (0, 0);
         }
-        let c = (iy as usize) * (h.nx as usize) + ix as usize;
+        let c = h.first_offset as usize + (iy as usize) * (h.nx as usize) + ix as usize;
         match (self.offsets.get(c), self.offsets.get(c + 1)) {
             (Some(&a), Some(&b)) if a <= b => (a, b),
             _ => (0, 0),

@@ -5,7 +5,7 @@
 //! GPU run the same model code whatever the lookup.
 
 use super::record::Scratch;
-use crate::bvh::{BvhCursor, BvhNode, next_near_point};
+use crate::bvh::{BvhCursor, BvhNode, next_near_point_before};
 use glam::Vec2;
 
 /// Where a "scratches near x0" enumeration stands (see [`ScratchSet::next_near`]).
@@ -58,19 +58,47 @@ impl ScratchSet for ScratchSlice<'_> {
 }
 
 /// The flattened BVH ([`crate::bvh`]) over the scratches' segment boxes: O(log n) per query.
-/// `scratches` must be in the builder's slot order (`scratchwave-cpu`'s `ScratchLookup`
+/// `scratches` must be in the builder's slot order (`scratchwave-host`'s `ScratchLookup`
 /// builds both); the GPU traverses the same two buffers with this same code.
+///
+/// The hierarchy is `nodes[first..end]` ([`ScratchBvh::new`]: all of them). A renderer on
+/// the GPU binds one node and one scratch buffer for every material of a scene, each
+/// material's hierarchy a window of it with its skip indices and slots counted in the
+/// shared buffers (rust-gpu cannot take a sub-slice of a storage buffer).
 #[derive(Clone, Copy, Debug)]
 pub struct ScratchBvh<'a> {
     /// Nodes in depth-first order.
     pub nodes: &'a [BvhNode],
     /// Scratches in slot order.
     pub scratches: &'a [Scratch],
+    /// The hierarchy's first node.
+    pub first: u32,
+    /// One past its last node.
+    pub end: u32,
+}
+
+impl<'a> ScratchBvh<'a> {
+    /// The hierarchy of all of `nodes` over `scratches`.
+    #[inline]
+    pub fn new(nodes: &'a [BvhNode], scratches: &'a [Scratch]) -> ScratchBvh<'a> {
+        ScratchBvh {
+            nodes,
+            scratches,
+            first: 0,
+            end: nodes.len() as u32,
+        }
+    }
 }
 
 impl ScratchSet for ScratchBvh<'_> {
     fn next_near(&self, cursor: &mut NearCursor, x0: Vec2, radius: f32) -> Option<Scratch> {
-        while let Some(slot) = next_near_point(self.nodes, cursor, [x0.x, x0.y, 0.0], radius) {
+        if cursor.node < self.first {
+            cursor.node = self.first;
+        }
+        let end = self.end as usize;
+        while let Some(slot) =
+            next_near_point_before(self.nodes, end, cursor, [x0.x, x0.y, 0.0], radius)
+        {
             let i = slot as usize;
             if i < self.scratches.len() {
                 let s = self.scratches[i];
