@@ -38,6 +38,15 @@ impl<'a> Input<'a> {
     }
 }
 
+/// How [`Gpu::dispatch_paced`] slices a long dispatch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pace {
+    /// Elements in the first slice.
+    pub first: usize,
+    /// The wall time each slice aims at.
+    pub target: Duration,
+}
+
 /// Wall-clock time of each step of a dispatch, each ended by waiting for the device.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Timings {
@@ -79,6 +88,22 @@ impl Gpu {
         entry: &str,
         inputs: &[Input<'_>],
         len: usize,
+    ) -> Result<Dispatched<O>> {
+        self.dispatch_paced(entry, inputs, len, None, &|_, _| {})
+    }
+
+    /// [`Gpu::dispatch`], and with a [`Pace`] in slices that are each submitted and waited
+    /// for on their own: the first of `pace.first` elements, each next one sized from the
+    /// last one's time so that it takes about `pace.target` (never more than the device
+    /// limits allow). A device's watchdog then never sees one long submission, and
+    /// `progress(done, len)` is called after each slice.
+    pub fn dispatch_paced<O: Pod>(
+        &self,
+        entry: &str,
+        inputs: &[Input<'_>],
+        len: usize,
+        pace: Option<Pace>,
+        progress: &dyn Fn(usize, usize),
     ) -> Result<Dispatched<O>> {
         let plan = self.plan::<O>(entry, inputs, len)?;
         if len == 0 {
@@ -131,17 +156,25 @@ impl Gpu {
         timings.upload = start.elapsed();
 
         let start = Instant::now();
-        let scope = ErrorScopes::push(&self.device);
-        let mut encoder = self.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(entry),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&pipeline.pipeline);
-            let group = scratchwave_spirv_shader::WORKGROUP_SIZE as usize;
-            for first in (0..len).step_by(plan.chunk) {
-                let count = plan.chunk.min(len - first);
+        let align = chunk_alignment(&self.limits);
+        let group = scratchwave_spirv_shader::WORKGROUP_SIZE as usize;
+        let round = |n: usize| (n / align * align).clamp(align, plan.chunk);
+        let mut size = match pace {
+            Some(p) => round(p.first),
+            None => plan.chunk,
+        };
+        let mut first = 0;
+        while first < len {
+            let count = size.min(len - first);
+            let slice_start = Instant::now();
+            let scope = ErrorScopes::push(&self.device);
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some(entry),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&pipeline.pipeline);
                 let range = |stride: usize| wgpu::BufferBinding {
                     buffer: &output,
                     offset: (first * stride) as u64,
@@ -174,10 +207,20 @@ impl Gpu {
                 pass.set_bind_group(0, &bind_group, &[]);
                 pass.dispatch_workgroups(count.div_ceil(group) as u32, 1, 1);
             }
+            self.queue.submit([encoder.finish()]);
+            scope.pop(&format!("dispatching `{entry}`"))?;
+            first += count;
+            if let Some(p) = pace {
+                self.wait("dispatching")?;
+                progress(first, len);
+                let took = slice_start.elapsed().as_secs_f64().max(1e-6);
+                let scale = (p.target.as_secs_f64() / took).clamp(0.25, 4.0);
+                size = round((count as f64 * scale) as usize);
+            }
         }
-        self.queue.submit([encoder.finish()]);
-        scope.pop(&format!("dispatching `{entry}`"))?;
-        self.wait("dispatching")?;
+        if pace.is_none() {
+            self.wait("dispatching")?;
+        }
         timings.dispatch = start.elapsed();
 
         let start = Instant::now();

@@ -17,19 +17,24 @@
 //!   [`Gpu::evaluate_table`] and [`Gpu::footprint_table`] (the CPU backend's
 //!   `evaluate_table` / `footprint_table`), [`Gpu::math_probe`] / [`math_probe_cpu`];
 //!   [`Gpu`] implements `scratchwave_host::TableBackend` for the conformance run.
+//! - [`Gpu::render_scene`]: a whole frame, the kernel's per-pixel light loop
+//!   (`kernel::render::radiance::pixel_radiance`) over a [`SceneInput`], dispatched in
+//!   slices paced to [`SCENE_PACE`].
 
 mod adapter;
 mod dispatch;
 mod error;
 mod gpu;
 mod probe;
+mod scene;
 mod table;
 mod table_backend;
 
 pub use adapter::{ADAPTER_ENV, AdapterChoice, AdapterKind, AdapterSummary};
-pub use dispatch::{Dispatched, Input, Timings};
+pub use dispatch::{Dispatched, Input, Pace, Timings};
 pub use error::{Result, SpirvError};
 pub use gpu::{Gpu, SHADER_SPV, entry_points};
 pub use probe::math_probe_cpu;
+pub use scene::{SCENE_PACE, SceneInput};
 pub use scratchwave_spirv_shader::FootprintParams;
 pub use scratchwave_spirv_shader::probe::{MathFunction, ProbeParams};

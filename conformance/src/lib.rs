@@ -12,4 +12,5 @@ pub mod generate;
 pub mod light_case;
 pub mod light_spec;
 pub mod run;
+pub mod scene_spirv;
 pub mod scenes;

@@ -13,11 +13,11 @@ use std::process::ExitCode;
 const USAGE: &str = "usage:
   scratchwave run [--cases DIR] [--scenes DIR] [--out DIR]
                                                   conformance run over the committed cases
-                                                  and scenes (cpu vs embree renders)
+                                                  and scenes (embree and spirv renders vs cpu)
   scratchwave table SPEC.json [--backend cpu|simd|spirv|all]
   scratchwave footprint SPEC.json [--backend cpu|simd|spirv]
   scratchwave light SPEC.json [--backend cpu|simd|spirv]
-  scratchwave render SCENE.json [--backend cpu|embree] [--out IMAGE.exr] [--png PREVIEW.png] [--exposure EV]";
+  scratchwave render SCENE.json [--backend cpu|embree|spirv] [--out IMAGE.exr] [--png PREVIEW.png] [--exposure EV]";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -273,12 +273,14 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
 fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failure> {
     use scratchwave_render::{Backend, RenderError, output};
     use std::io::{IsTerminal, Write};
-    let backend = match flag(flags, "backend").unwrap_or("cpu") {
-        "cpu" => Backend::Cpu,
-        "embree" => Backend::Embree,
+    let name = flag(flags, "backend").unwrap_or("cpu");
+    let backend = match name {
+        "cpu" => Some(Backend::Cpu),
+        "embree" => Some(Backend::Embree),
+        "spirv" => None,
         other => {
             return Err(Failure::Usage(format!(
-                "unknown render backend {other:?} (expected cpu or embree)"
+                "unknown render backend {other:?} (expected cpu, embree or spirv)"
             )));
         }
     };
@@ -299,18 +301,35 @@ fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failur
             let mut e = std::io::stderr().lock();
             let _ = write!(
                 e,
-                "\rrendering {:3}% ({done}/{total} tiles)",
-                done * 100 / total.max(1)
+                "\rrendering {:3}% ({done}/{total} {})",
+                done * 100 / total.max(1),
+                if backend.is_some() { "tiles" } else { "pixels" }
             );
             let _ = e.flush();
         }
     };
-    let out = match scratchwave_render::render_scene(&scene, backend, &progress) {
-        Ok(o) => o,
-        Err(RenderError::Input(e)) => return Err(Failure::Spec(e)),
-        Err(e) => {
-            eprintln!("error: {e}");
-            return Ok(ExitCode::from(1));
+    let out = match backend {
+        Some(b) => match scratchwave_render::render_scene(&scene, b, &progress) {
+            Ok(o) => o,
+            Err(RenderError::Input(e)) => return Err(Failure::Spec(e)),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return Ok(ExitCode::from(1));
+            }
+        },
+        None => {
+            let rendered = scratchwave_spirv::Gpu::new()
+                .map_err(|e| format!("spirv: {e}"))
+                .and_then(|gpu| {
+                    scratchwave_conformance::scene_spirv::render_spirv(&gpu, &scene, &progress)
+                });
+            match rendered {
+                Ok(o) => o,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return Ok(ExitCode::from(1));
+                }
+            }
         }
     };
     if tty {
@@ -319,7 +338,7 @@ fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failur
     let st = &out.stats;
     let attrs = [
         ("scene", scene.name.clone()),
-        ("backend", backend.name().to_string()),
+        ("backend", name.to_string()),
         ("render_seconds", format!("{:.6}", st.seconds)),
         ("build_seconds", format!("{:.6}", out.build_seconds)),
         ("primary_rays", st.primary_rays.to_string()),
@@ -348,7 +367,7 @@ fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failur
         out.build_seconds,
         st.mrays_per_s(),
         st.shading_evaluations,
-        backend.name()
+        name
     );
     Ok(ExitCode::SUCCESS)
 }
@@ -413,14 +432,32 @@ fn conformance_run(
         .flat_map(|d| scratchwave_conformance::scenes::scene_files(d))
         .collect();
     let mut scene_reports = Vec::new();
+    let diff_dir = out_dir.join("scenes");
+    let gpu = if scene_files.is_empty() {
+        Err("not needed".to_string())
+    } else {
+        scratchwave_spirv::Gpu::new().map_err(|e| format!("spirv unavailable: {e}"))
+    };
+    if !scene_files.is_empty() {
+        std::fs::create_dir_all(&diff_dir).map_err(|e| {
+            Failure::Spec(SpecError::Io {
+                path: diff_dir.display().to_string(),
+                msg: e.to_string(),
+            })
+        })?;
+    }
     for (i, f) in scene_files.iter().enumerate() {
         eprintln!(
-            "[scene {}/{}] {} (cpu vs embree)",
+            "[scene {}/{}] {} (embree and spirv vs cpu)",
             i + 1,
             scene_files.len(),
             f.display()
         );
-        scene_reports.push(scratchwave_conformance::scenes::compare_scene(f));
+        scene_reports.push(scratchwave_conformance::scenes::compare_scene(
+            f,
+            gpu.as_ref().map_err(String::as_str),
+            Some(&diff_dir),
+        ));
     }
     let mut md = if reports.is_empty() {
         String::new()
@@ -456,9 +493,14 @@ fn conformance_run(
     std::fs::write(out_dir.join("report.md"), header + &md).map_err(io)?;
     let js = serde_json::json!({"backends": names, "notes": notes, "cases": run::to_json(&reports),
             "scenes": scene_reports.iter().map(|r| serde_json::json!({
-                "name": r.name, "width": r.size.0, "height": r.size.1, "worst_rel": r.worst,
-                "p999_rel": r.p999, "bad_pixels": r.bad_pixels, "max_bad_pixels": r.max_bad_pixels,
-                "rel_tol": r.rel_tol, "why": r.why, "pass": r.pass, "error": r.error,
+                "name": r.name, "width": r.size.0, "height": r.size.1,
+                "max_bad_pixels": r.max_bad_pixels, "rel_tol": r.rel_tol, "why": r.why,
+                "cpu_seconds": r.cpu_seconds, "pass": r.pass, "error": r.error,
+                "against_cpu": r.pairs.iter().map(|p| serde_json::json!({
+                    "backend": p.backend, "worst_rel": p.worst, "p999_rel": p.p999,
+                    "bad_pixels": p.bad_pixels, "listed": p.listed, "seconds": p.seconds,
+                    "pass": p.pass, "error": p.error,
+                })).collect::<Vec<_>>(),
             })).collect::<Vec<_>>()});
     std::fs::write(
         out_dir.join("report.json"),

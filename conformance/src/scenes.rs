@@ -1,17 +1,47 @@
 //! Scene conformance: every scene under `conformance/scenes/` rendered with the portable
-//! kernel BVH (`cpu`) and with Embree, compared pixel by pixel.
+//! kernel BVH (`cpu`, the reference), with Embree and with the SPIR-V renderer
+//! (`render_pixels` on Vulkan), each compared with `cpu` pixel by pixel.
 //!
 //! Per pixel and channel the relative difference is `|a − b| / max(|a|, |b|, floor)` with
 //! `floor = 1e-6 ×` the image's largest value (dark pixels are compared absolutely at that
-//! scale). A scene passes when at most `max_bad_pixels` pixels exceed its `rel_tol`; both
-//! come from the scene's `"conformance"` object with the reason (`"why"`).
+//! scale). A comparison passes when at most `max_bad_pixels` pixels exceed the scene's
+//! `rel_tol`; both come from the scene's `"conformance"` object with the reason (`"why"`).
+//! The pixels beyond it are listed (the first [`LISTED`]) and, with an output directory,
+//! each comparison's per-pixel difference is written as an EXR (`<scene>-<backend>-diff.exr`,
+//! the relative difference of R, G and B in its channels).
 
-use scratchwave_render::{Backend, render_scene, scene_file};
+use crate::scene_spirv::render_spirv;
+use scratchwave_render::{Backend, Image, Rendered, output, render_scene, scene_file};
 use scratchwave_spec::SpecError;
 use scratchwave_spec::json::Obj;
+use scratchwave_spirv::Gpu;
 use std::path::{Path, PathBuf};
 
-/// One scene's comparison.
+/// Pixels beyond tolerance listed per comparison.
+pub const LISTED: usize = 20;
+
+/// One backend compared with `cpu` on one scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PairReport {
+    /// The backend (`embree` or `spirv`).
+    pub backend: String,
+    /// Worst relative difference.
+    pub worst: f64,
+    /// 99.9th percentile of the per-pixel relative difference.
+    pub p999: f64,
+    /// Pixels beyond `rel_tol`.
+    pub bad_pixels: usize,
+    /// The first [`LISTED`] of them: `(i, j, relative difference)`.
+    pub listed: Vec<(u32, u32, f64)>,
+    /// Render seconds.
+    pub seconds: f64,
+    /// Whether it passed.
+    pub pass: bool,
+    /// A failure to render, if any.
+    pub error: Option<String>,
+}
+
+/// One scene's comparisons.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneReport {
     /// Scene name (file stem).
@@ -24,17 +54,13 @@ pub struct SceneReport {
     pub max_bad_pixels: usize,
     /// Why the tolerance is what it is.
     pub why: String,
-    /// Worst relative difference.
-    pub worst: f64,
-    /// 99.9th percentile of the per-pixel relative difference.
-    pub p999: f64,
-    /// Pixels beyond `rel_tol`.
-    pub bad_pixels: usize,
-    /// Render seconds (cpu, embree).
-    pub seconds: (f64, f64),
-    /// Whether it passed.
+    /// Render seconds of the `cpu` reference.
+    pub cpu_seconds: f64,
+    /// `embree` and `spirv` against `cpu`.
+    pub pairs: Vec<PairReport>,
+    /// Whether every comparison passed.
     pub pass: bool,
-    /// A failure to render, if any.
+    /// A failure to read the scene or render the reference, if any.
     pub error: Option<String>,
 }
 
@@ -98,8 +124,71 @@ pub fn pixel_differences(a: &[[f32; 3]], b: &[[f32; 3]]) -> Vec<f64> {
         .collect()
 }
 
-/// Renders and compares one scene.
-pub fn compare_scene(path: &Path) -> SceneReport {
+/// The per-pixel comparison of `b` with the reference `a` (its error left `None`).
+pub fn compare_images(backend: &str, a: &Image, b: &Image, rel_tol: f64, max_bad: usize) -> PairReport {
+    let mut r = PairReport {
+        backend: backend.to_string(),
+        worst: f64::NAN,
+        p999: f64::NAN,
+        bad_pixels: 0,
+        listed: Vec::new(),
+        seconds: 0.0,
+        pass: false,
+        error: None,
+    };
+    if (a.width, a.height) != (b.width, b.height) || a.rgb.len() != b.rgb.len() {
+        r.error = Some(format!(
+            "image size {}x{} differs from cpu's {}x{}",
+            b.width, b.height, a.width, a.height
+        ));
+        return r;
+    }
+    let d = pixel_differences(&a.rgb, &b.rgb);
+    for (k, &x) in d.iter().enumerate() {
+        if !(x <= rel_tol) {
+            r.bad_pixels += 1;
+            if r.listed.len() < LISTED {
+                let w = a.width.max(1) as usize;
+                r.listed.push(((k % w) as u32, (k / w) as u32, x));
+            }
+        }
+    }
+    let mut sorted = d;
+    sorted.sort_by(f64::total_cmp);
+    r.worst = sorted.last().copied().unwrap_or(0.0);
+    let k = ((sorted.len() as f64) * 0.999).ceil() as usize;
+    r.p999 = sorted.get(k.saturating_sub(1)).copied().unwrap_or(0.0);
+    r.pass = r.bad_pixels <= max_bad;
+    r
+}
+
+/// The per-pixel, per-channel relative difference of two images of one size, as an image.
+pub fn difference_image(a: &Image, b: &Image) -> Image {
+    let peak = a
+        .rgb
+        .iter()
+        .chain(&b.rgb)
+        .flat_map(|p| p.iter())
+        .fold(0.0f32, |m, &x| m.max(x.abs()));
+    let floor = (peak * 1e-6).max(f32::MIN_POSITIVE);
+    Image {
+        width: a.width,
+        height: a.height,
+        rgb: a
+            .rgb
+            .iter()
+            .zip(&b.rgb)
+            .map(|(p, q)| {
+                [0, 1, 2].map(|c| (p[c] - q[c]).abs() / p[c].abs().max(q[c].abs()).max(floor))
+            })
+            .collect(),
+    }
+}
+
+/// Renders one scene on `cpu`, `embree` and (with a device) `spirv`, and compares the
+/// latter two with `cpu`. Without a device the `spirv` comparison fails with `gpu_error`.
+/// With `diff_dir`, each comparison's difference image is written there.
+pub fn compare_scene(path: &Path, gpu: Result<&Gpu, &str>, diff_dir: Option<&Path>) -> SceneReport {
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -110,10 +199,8 @@ pub fn compare_scene(path: &Path) -> SceneReport {
         rel_tol: 0.0,
         max_bad_pixels: 0,
         why: String::new(),
-        worst: f64::NAN,
-        p999: f64::NAN,
-        bad_pixels: 0,
-        seconds: (0.0, 0.0),
+        cpu_seconds: 0.0,
+        pairs: Vec::new(),
         pass: false,
         error: None,
     };
@@ -122,16 +209,49 @@ pub fn compare_scene(path: &Path) -> SceneReport {
         (r.rel_tol, r.max_bad_pixels, r.why) = (rel, bad, why);
         let scene = scene_file::read_scene(path).map_err(|e| e.to_string())?;
         let a = render_scene(&scene, Backend::Cpu, &|_, _| {}).map_err(|e| e.to_string())?;
-        let b = render_scene(&scene, Backend::Embree, &|_, _| {}).map_err(|e| e.to_string())?;
         r.size = (a.image.width, a.image.height);
-        r.seconds = (a.stats.seconds, b.stats.seconds);
-        let mut d = pixel_differences(&a.image.rgb, &b.image.rgb);
-        r.bad_pixels = d.iter().filter(|&&x| !(x <= rel)).count();
-        d.sort_by(f64::total_cmp);
-        r.worst = d.last().copied().unwrap_or(0.0);
-        let k = ((d.len() as f64) * 0.999).ceil() as usize;
-        r.p999 = d.get(k.saturating_sub(1)).copied().unwrap_or(0.0);
-        r.pass = r.bad_pixels <= r.max_bad_pixels;
+        r.cpu_seconds = a.stats.seconds;
+        let others: [(&str, Result<Rendered, String>); 2] = [
+            (
+                "embree",
+                render_scene(&scene, Backend::Embree, &|_, _| {}).map_err(|e| e.to_string()),
+            ),
+            (
+                "spirv",
+                gpu.map_err(str::to_string)
+                    .and_then(|g| render_spirv(g, &scene, &|_, _| {})),
+            ),
+        ];
+        for (backend, out) in others {
+            let pair = match out {
+                Ok(b) => {
+                    let mut p = compare_images(backend, &a.image, &b.image, rel, bad);
+                    p.seconds = b.stats.seconds;
+                    if let Some(dir) = diff_dir
+                        && p.error.is_none()
+                    {
+                        let file = dir.join(format!("{}-{backend}-diff.exr", r.name));
+                        if let Err(e) = output::write_exr(&file, &difference_image(&a.image, &b.image), &[]) {
+                            p.error = Some(e.to_string());
+                            p.pass = false;
+                        }
+                    }
+                    p
+                }
+                Err(e) => PairReport {
+                    backend: backend.to_string(),
+                    worst: f64::NAN,
+                    p999: f64::NAN,
+                    bad_pixels: 0,
+                    listed: Vec::new(),
+                    seconds: 0.0,
+                    pass: false,
+                    error: Some(e),
+                },
+            };
+            r.pairs.push(pair);
+        }
+        r.pass = r.pairs.iter().all(|p| p.pass && p.error.is_none());
         Ok(())
     })();
     if let Err(e) = result {
@@ -144,25 +264,50 @@ pub fn compare_scene(path: &Path) -> SceneReport {
 /// A Markdown table of scene reports.
 pub fn markdown(reports: &[SceneReport]) -> String {
     let mut s = String::from(
-        "## Scenes: cpu (kernel BVH) vs embree, per pixel\n\n| scene | size | worst rel | 99.9 % rel | beyond tol | allowed | rel_tol | cpu s | embree s | pass |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        "## Scenes: embree and spirv against cpu (kernel BVH), per pixel\n\n| scene | size | vs cpu | worst rel | 99.9 % rel | beyond tol | allowed | rel_tol | cpu s | its s | pass |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in reports {
-        s += &format!(
-            "| {} | {}x{} | {:.3e} | {:.3e} | {} | {} | {:.0e} | {:.3} | {:.3} | {} |\n",
-            r.name,
-            r.size.0,
-            r.size.1,
-            r.worst,
-            r.p999,
-            r.bad_pixels,
-            r.max_bad_pixels,
-            r.rel_tol,
-            r.seconds.0,
-            r.seconds.1,
-            if r.pass { "yes" } else { "**no**" }
-        );
+        for p in &r.pairs {
+            s += &format!(
+                "| {} | {}x{} | {} | {:.3e} | {:.3e} | {} | {} | {:.0e} | {:.3} | {:.3} | {} |\n",
+                r.name,
+                r.size.0,
+                r.size.1,
+                p.backend,
+                p.worst,
+                p.p999,
+                p.bad_pixels,
+                r.max_bad_pixels,
+                r.rel_tol,
+                r.cpu_seconds,
+                p.seconds,
+                if p.pass && p.error.is_none() { "yes" } else { "**no**" }
+            );
+        }
+    }
+    for r in reports {
         if let Some(e) = &r.error {
             s += &format!("\n{}: error: {e}\n", r.name);
+        }
+        for p in &r.pairs {
+            if let Some(e) = &p.error {
+                s += &format!("\n{} ({}): error: {e}\n", r.name, p.backend);
+            }
+            if !p.listed.is_empty() {
+                let list: Vec<String> = p
+                    .listed
+                    .iter()
+                    .map(|(i, j, x)| format!("({i}, {j}) {x:.2e}"))
+                    .collect();
+                s += &format!(
+                    "\n{} ({}): pixels beyond {:.0e}: {}{}\n",
+                    r.name,
+                    p.backend,
+                    r.rel_tol,
+                    list.join(", "),
+                    if p.bad_pixels > p.listed.len() { ", …" } else { "" }
+                );
+            }
         }
     }
     for r in reports {

@@ -25,6 +25,7 @@ pub mod queries;
 pub mod rng;
 pub mod scratch_lookup;
 mod segment_bvh;
+pub mod shared_scratches;
 mod triangle_bvh;
 
 pub use backend::{BackendError, TableBackend};
@@ -33,4 +34,5 @@ pub use mesh::MeshError;
 pub use queries::{Coherence, RayQueries, SegmentRadiusQuery};
 pub use scratch_lookup::{GridData, ScratchLookup};
 pub use segment_bvh::SegmentBvh;
+pub use shared_scratches::{SharedScratchData, SharedScratchesError};
 pub use triangle_bvh::TriangleBvh;

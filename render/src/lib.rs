@@ -14,6 +14,7 @@
 //! ```
 
 pub mod output;
+pub mod per_pixel;
 pub mod prepare;
 pub mod render;
 pub mod scene;

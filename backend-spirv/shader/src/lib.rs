@@ -25,6 +25,14 @@ use scratchwave_kernel::footprint::{self, Ellipse};
 use scratchwave_kernel::ghs::GhsParams;
 use scratchwave_kernel::ghs::g1::G1Table;
 use scratchwave_kernel::lights::{LightParams, LightQuery, light_integral};
+use scratchwave_kernel::ray::Triangle;
+use scratchwave_kernel::render::area::SceneLight;
+use scratchwave_kernel::render::radiance::{
+    self, FrameParams, MaterialScratches, PixelValue, SceneGeometry, SharedScratches,
+    TriangleHierarchy,
+};
+use scratchwave_kernel::render::shading::ShadeMaterial;
+use scratchwave_kernel::render::surface::{Surface, TriangleUv};
 use scratchwave_kernel::scratch::{Scratch, ScratchBvh};
 use scratchwave_kernel::table::{self, Model, TableParams, TableQuery};
 use spirv_std::glam::UVec3;
@@ -262,5 +270,63 @@ pub fn bsdf(
         let set = ScratchBvh::new(nodes, scratches);
         let lk = Lookup::with_g1_table(set, G1Table::from_flat(g1));
         out[i] = bsdf_probe::evaluate(&material[0], &lk, &queries[i]);
+    }
+}
+
+/// One pixel of a scene ([`radiance::pixel_radiance`]): its camera rays through the
+/// triangle hierarchy (`tri_nodes`, slot-ordered `tri_slots` and `prim_ids`), the hit's
+/// shapes (`triangles`, `uvs`, `prim_object`, `surfaces` by primitive id and object), the
+/// materials with their scratch lookups in shared buffers (`scratch_materials`, BVH
+/// `scratch_nodes` and `scratches`, grid `offsets` and `items`), the lights, and the G1
+/// table. `pixels[i]` is the pixel's index `j·W + i` in the image.
+#[spirv(compute(threads(64)))]
+#[allow(clippy::too_many_arguments)]
+pub fn render_pixels(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] frame: &[FrameParams],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] tri_nodes: &[BvhNode],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 2)] tri_slots: &[Triangle],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] prim_ids: &[u32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] triangles: &[Triangle],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] uvs: &[TriangleUv],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] prim_object: &[u32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] surfaces: &[Surface],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] materials: &[ShadeMaterial],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] lights: &[SceneLight],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] scratch_materials: &[MaterialScratches],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] scratch_nodes: &[BvhNode],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 12)] scratches: &[Scratch],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 13)] offsets: &[u32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 14)] items: &[u32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 15)] g1: &[f32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 16)] pixels: &[u32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 17)] out: &mut [PixelValue],
+) {
+    let k = id.x as usize;
+    if k < out.len() && k < pixels.len() {
+        let frame = frame[0];
+        let w = frame.camera.width_px;
+        let p = pixels[k];
+        let (i, j) = if w > 0 { (p % w, p / w) } else { (0, 0) };
+        let geo = SceneGeometry {
+            triangles,
+            uvs,
+            prim_object,
+            surfaces,
+        };
+        let lookups = SharedScratches {
+            materials: scratch_materials,
+            nodes: scratch_nodes,
+            scratches,
+            offsets,
+            items,
+            g1,
+        };
+        let tracer = TriangleHierarchy {
+            nodes: tri_nodes,
+            triangles: tri_slots,
+            prim_ids,
+        };
+        out[k] = radiance::pixel_radiance(&frame, &geo, materials, lights, &lookups, &tracer, i, j);
     }
 }

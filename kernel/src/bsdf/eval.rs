@@ -5,13 +5,13 @@
 //! each wavelength with [`table::model_value`], so every value equals [`table::evaluate`]
 //! (and the renderer's `brdf`) bit for bit. GHS goes through [`table::evaluate_ghs_with_g1_table`]; the
 //! `(1 − ρc)` GHS base of WernerBlended and Velinov follows Werner §5. With a footprint,
-//! Velinov's model is averaged over it ([`velinov_footprint_brdf`], Velinov §4, one walk per
-//! wavelength); the coherent models and GHS are point-sampled at its centre.
+//! Velinov's model is averaged over it ([`velinov_footprint_brdf_spectral`], Velinov §4, one
+//! walk for all wavelengths); the coherent models and GHS are point-sampled at its centre.
 
 use super::{BsdfMaterial, Lookup, ShadingFrame, ShadingPoint, Spectrum, Wavelengths};
 use crate::ghs::g1::G1Table;
 use crate::math;
-use crate::render::footprint::velinov_footprint_brdf;
+use crate::render::footprint::velinov_footprint_brdf_spectral;
 use crate::render::shading::SceneModel;
 use crate::scratch::{
     MAX_SPECTRAL, ScratchSet, SpectralInputs, scratch_area_density, scratch_response_spectral,
@@ -56,11 +56,7 @@ pub fn eval<S: ScratchSet>(
     let ghs_base = m.has_ghs_base();
     let rho = match (m.scene_model(), sp.footprint()) {
         (SceneModel::Velinov, Some(e)) => {
-            let mut j = 0;
-            while j < MAX_SPECTRAL && j < n {
-                vals[j] = velinov_footprint_brdf(&params, &m.material, wi, wo, &e, wl.nm[j], set);
-                j += 1;
-            }
+            vals = velinov_footprint_brdf_spectral(&params, &m.material, wi, wo, &e, &wl.nm, n, set);
             // The renderer weights a GHS base by 1 − ρc at the footprint centre.
             if ghs_base {
                 scratch_area_density(set, sp.x(), sigma)

@@ -69,8 +69,17 @@ pub struct Light {
 const _: () = assert!(core::mem::size_of::<Light>() == 288);
 
 impl Default for Light {
+    /// All zero, field by field (`Zeroable::zeroed` writes bytes through a pointer cast,
+    /// which SPIR-V cannot express).
     fn default() -> Self {
-        Zeroable::zeroed()
+        Light {
+            kind: 0,
+            cone: 0,
+            count: 0,
+            pad: 0,
+            sphere: [0.0; 4],
+            vertices: [[0.0; 4]; MAX_VERTICES],
+        }
     }
 }
 

@@ -23,7 +23,7 @@ use crate::material::Material;
 use crate::math;
 use crate::scratch::profile::mask_minus_profile;
 use crate::scratch::response::CUTOFF_SIGMAS;
-use crate::scratch::{DepthTerm, NearCursor, Profile, ScratchSet, base_response};
+use crate::scratch::{DepthTerm, MAX_SPECTRAL, NearCursor, Profile, ScratchSet, base_response};
 use crate::table::TableParams;
 use crate::units::{depth_half_turns_per_um, direction, um_from_nm, xi_of};
 use glam::{Vec2, Vec3};
@@ -78,6 +78,7 @@ pub fn footprint_ellipse(rd: &RayDifferential, t: f32, sp: &SurfacePoint, scale:
 
 /// Velinov's incoherent BRDF (1/sr, no cosine) averaged over footprint `e`, the Gaussian
 /// base included when `params.base_gaussian` is 1. `wi`, `wo` in the shading frame.
+/// [`velinov_footprint_brdf_spectral`] at one wavelength.
 pub fn velinov_footprint_brdf<S: ScratchSet>(
     params: &TableParams,
     material: &Material,
@@ -87,50 +88,83 @@ pub fn velinov_footprint_brdf<S: ScratchSet>(
     lambda_nm: f32,
     set: &S,
 ) -> f32 {
+    let mut lambdas = [0.0; MAX_SPECTRAL];
+    lambdas[0] = lambda_nm;
+    velinov_footprint_brdf_spectral(params, material, wi, wo, e, &lambdas, 1, set)[0]
+}
+
+/// [`velinov_footprint_brdf`] at the first `count` of `lambdas_nm`, in one scratch walk:
+/// each scratch's footprint integrals (`η_P`, and `ρ_P` for the base) do not depend on λ
+/// and are computed once for all wavelengths. Each value equals a one-wavelength walk bit
+/// for bit.
+#[allow(clippy::too_many_arguments)]
+pub fn velinov_footprint_brdf_spectral<S: ScratchSet>(
+    params: &TableParams,
+    material: &Material,
+    wi: Vec3,
+    wo: Vec3,
+    e: &Ellipse,
+    lambdas_nm: &[f32; MAX_SPECTRAL],
+    count: usize,
+    set: &S,
+) -> [f32; MAX_SPECTRAL] {
+    let mut out = [0.0; MAX_SPECTRAL];
+    let n = if count < MAX_SPECTRAL { count } else { MAX_SPECTRAL };
     let wi = direction(wi.to_array());
     let wo = direction(wo.to_array());
     let sigma = params.sigma_um;
-    let lambda = um_from_nm(lambda_nm);
-    if !(wi.z > 0.0 && wo.z > 0.0 && sigma > 0.0 && lambda > 0.0) {
-        return 0.0;
+    if !(wi.z > 0.0 && wo.z > 0.0 && sigma > 0.0) {
+        return out;
     }
-    let xi = xi_of(wi, wo, lambda_nm);
-    let half_turns = depth_half_turns_per_um(
-        DepthTerm::from_u32(params.depth_term).gamma(wi.z + wo.z),
-        lambda_nm,
-    );
+    let mut xi = [Vec2::ZERO; MAX_SPECTRAL];
+    let mut half_turns = [0.0; MAX_SPECTRAL];
+    let gamma = DepthTerm::from_u32(params.depth_term).gamma(wi.z + wo.z);
+    let mut j = 0;
+    while j < n {
+        xi[j] = xi_of(wi, wo, lambdas_nm[j]);
+        half_turns[j] = depth_half_turns_per_um(gamma, lambdas_nm[j]);
+        j += 1;
+    }
     let centre = Vec2::from_array(e.center);
     let radius = math::max(e.a1, e.a2) + CUTOFF_SIGMAS * sigma;
-    let mut sum = 0.0;
+    let mut sum = [0.0; MAX_SPECTRAL];
     let mut rho = 0.0;
     let mut cursor = NearCursor::default();
     let base = params.base_gaussian == 1;
     while let Some(s) = set.next_near(&mut cursor, centre, radius) {
-        let Some(frame) = s.frame() else {
-            continue;
-        };
-        let xi1 = xi.dot(frame.tangent);
-        let xi2 = xi.dot(frame.bitangent);
-        let mp = mask_minus_profile(
-            Profile::from_u32(s.profile),
-            s.width,
-            s.depth,
-            half_turns,
-            xi2,
-        );
-        let along = math::exp(-4.0 * math::PI * math::PI * sigma * sigma * xi1 * xi1);
-        sum += mp.norm_sqr() * along * eta_p_accurate(&s, e, sigma);
-        if base {
-            rho += rho_p_accurate(&s, e, sigma);
+        if let Some(frame) = s.frame() {
+            let eta = eta_p_accurate(&s, e, sigma);
+            if base {
+                rho += rho_p_accurate(&s, e, sigma);
+            }
+            let profile = Profile::from_u32(s.profile);
+            let mut j = 0;
+            while j < n {
+                let xi1 = xi[j].dot(frame.tangent);
+                let xi2 = xi[j].dot(frame.bitangent);
+                let mp = mask_minus_profile(profile, s.width, s.depth, half_turns[j], xi2);
+                let along = math::exp(-4.0 * math::PI * math::PI * sigma * sigma * xi1 * xi1);
+                sum[j] += mp.norm_sqr() * along * eta;
+                j += 1;
+            }
         }
     }
-    if base {
-        let b = base_response(xi, sigma);
-        sum += math::max(1.0 - rho, 0.0) * b * b;
-    }
     let f = material.reflectance(wi, wo);
-    let r = f * sum / (math::PI * sigma * sigma * lambda * lambda);
-    if r.is_finite() && r > 0.0 { r } else { 0.0 }
+    let mut j = 0;
+    while j < n {
+        let lambda = um_from_nm(lambdas_nm[j]);
+        if lambda > 0.0 {
+            let mut total = sum[j];
+            if base {
+                let b = base_response(xi[j], sigma);
+                total += math::max(1.0 - rho, 0.0) * b * b;
+            }
+            let r = f * total / (math::PI * sigma * sigma * lambda * lambda);
+            out[j] = if r.is_finite() && r > 0.0 { r } else { 0.0 };
+        }
+        j += 1;
+    }
+    out
 }
 
 /// `ρ_P = Σ_k (1/A_P) ∫_P ρ_k(x) dx`, the scratches' area density averaged over footprint

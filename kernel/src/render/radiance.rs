@@ -341,22 +341,35 @@ pub fn shade_light<S: ScratchSet, O: Occlusion>(
     if first.below_horizon {
         return;
     }
-    // Consensus of the probes: Some(true) all lit, Some(false) all blocked, None otherwise
-    // (or no probes: trace every node).
+    // Consensus of the probes: all lit, all blocked, or none (they disagree, or there are
+    // no probes: trace every node).
     let consensus = if frame.shadow_mode() == ShadowMode::Adaptive && first.count > 0 {
         let mask = (1u32 << first.count) - 1;
         let blocked = first_blocked & mask;
         if blocked == 0 {
-            Some(true)
+            Consensus::Lit
         } else if blocked == mask {
-            Some(false)
+            Consensus::Hidden
         } else {
-            None
+            Consensus::None
         }
     } else {
-        None
+        Consensus::None
     };
     area_light(frame, m, lk, hp, light, consensus, occ, acc, counts);
+}
+
+/// What an area light's probes say (an `Option<bool>` would be a pointer comparison on
+/// SPIR-V; `u32` discriminants need no Int8 capability).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u32)]
+enum Consensus {
+    /// Every probe lit: the light is taken as wholly visible.
+    Lit,
+    /// Every probe blocked: wholly hidden.
+    Hidden,
+    /// They disagree, or there are none: a shadow ray per node.
+    None,
 }
 
 /// A sphere or triangle light: the visible fraction from `consensus` (its probes agreed:
@@ -370,19 +383,19 @@ fn area_light<S: ScratchSet, O: Occlusion>(
     lk: &Lookup<'_, S>,
     hp: &HitPoint,
     light: &SceneLight,
-    consensus: Option<bool>,
+    consensus: Consensus,
     occ: &O,
     acc: &mut [f32; 3],
     counts: &mut ShadeCounts,
 ) {
     let (sp, wo, fp) = (&hp.sp, hp.wo, &hp.fp);
     let nodes = shading::needs_area_nodes(m);
-    if consensus == Some(false) {
+    if consensus == Consensus::Hidden {
         return;
     }
     let mut visible = [None; area::MAX_NODES as usize];
     let (mut w_vis, mut w_all) = (1.0f32, 1.0f32);
-    if consensus.is_none() || nodes {
+    if consensus == Consensus::None || nodes {
         (w_vis, w_all) = (0.0, 0.0);
         let mut i = 0;
         while i < area::node_count(light) && i < area::MAX_NODES {
@@ -391,8 +404,9 @@ fn area_light<S: ScratchSet, O: Occlusion>(
             {
                 w_all += node.weight;
                 let lit = match consensus {
-                    Some(lit) => lit,
-                    None => {
+                    Consensus::Lit => true,
+                    Consensus::Hidden => false,
+                    Consensus::None => {
                         counts.shadow_rays += 1;
                         !occ.occluded(&shading::shadow_ray(
                             sp.position,

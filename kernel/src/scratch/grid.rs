@@ -63,18 +63,19 @@ impl ScratchGrid<'_> {
             return (0, 0);
         }
         let c = h.first_offset as usize + (iy as usize) * (h.nx as usize) + ix as usize;
-        match (self.offsets.get(c), self.offsets.get(c + 1)) {
-            (Some(&a), Some(&b)) if a <= b => (a, b),
-            _ => (0, 0),
+        // Index checks rather than `get`: an `Option<&u32>` is a pointer rust-gpu cannot
+        // compare.
+        if c + 1 >= self.offsets.len() {
+            return (0, 0);
         }
+        let (a, b) = (self.offsets[c], self.offsets[c + 1]);
+        if a <= b { (a, b) } else { (0, 0) }
     }
 }
 
-impl ScratchSet for ScratchGrid<'_> {
-    fn next_near(&self, cursor: &mut NearCursor, x0: Vec2, radius: f32) -> Option<Scratch> {
-        if !(radius <= self.header.radius) {
-            return self.bvh.next_near(cursor, x0, radius);
-        }
+impl ScratchGrid<'_> {
+    /// The next scratch of `x0`'s cell within `radius` (see [`ScratchSet::next_near`]).
+    fn next_in_cell(&self, cursor: &mut NearCursor, x0: Vec2, radius: f32) -> Option<Scratch> {
         // `node` marks a started walk (a fresh cursor is all zeros).
         if cursor.node == 0 {
             cursor.node = 1;
@@ -82,16 +83,32 @@ impl ScratchSet for ScratchGrid<'_> {
             cursor.slot = a;
             cursor.end = b;
         }
-        while cursor.slot < cursor.end {
+        let mut found = None;
+        while found.is_none() && cursor.slot < cursor.end {
             let k = cursor.slot as usize;
             cursor.slot += 1;
-            let &i = self.items.get(k)?;
-            if let Some(&s) = self.bvh.scratches.get(i as usize)
-                && s.distance_to(x0) <= radius
-            {
-                return Some(s);
+            if k < self.items.len() {
+                let i = self.items[k] as usize;
+                if i < self.bvh.scratches.len() {
+                    let s = self.bvh.scratches[i];
+                    if s.distance_to(x0) <= radius {
+                        found = Some(s);
+                    }
+                }
             }
         }
-        None
+        found
+    }
+}
+
+impl ScratchSet for ScratchGrid<'_> {
+    // One exit per function, no `return` inside a loop: the shape lavapipe runs correctly
+    // when neighbouring invocations take different paths (a cell list here, the BVH there).
+    fn next_near(&self, cursor: &mut NearCursor, x0: Vec2, radius: f32) -> Option<Scratch> {
+        if radius <= self.header.radius {
+            self.next_in_cell(cursor, x0, radius)
+        } else {
+            self.bvh.next_near(cursor, x0, radius)
+        }
     }
 }
