@@ -285,28 +285,33 @@ pub fn next_slot_before<E: FnMut(&Aabb) -> bool>(
     mut enter: E,
 ) -> Option<u32> {
     let n = if end < nodes.len() { end } else { nodes.len() };
-    loop {
+    // One exit, no `return` inside the loop: neighbouring GPU invocations leave it after
+    // different numbers of iterations, and lavapipe runs that correctly only for a loop
+    // whose every exit goes through its condition (see ARCHITECTURE.md, *Divergence*).
+    let mut out = None;
+    let mut done = false;
+    while !done {
         if cursor.slot < cursor.end {
-            let s = cursor.slot;
+            out = Some(cursor.slot);
             cursor.slot += 1;
-            return Some(s);
-        }
-        let i = cursor.node as usize;
-        if i >= n {
-            return None;
-        }
-        let node = nodes[i];
-        let entered = enter(&node.bounds);
-        cursor.node += 1;
-        if node.is_leaf() {
-            if entered {
-                cursor.slot = node.link;
-                cursor.end = node.link.wrapping_add(node.count).max(node.link);
+            done = true;
+        } else if cursor.node as usize >= n {
+            done = true;
+        } else {
+            let node = nodes[cursor.node as usize];
+            let entered = enter(&node.bounds);
+            cursor.node += 1;
+            if node.is_leaf() {
+                if entered {
+                    cursor.slot = node.link;
+                    cursor.end = node.link.wrapping_add(node.count).max(node.link);
+                }
+            } else if !entered && node.link > cursor.node {
+                cursor.node = node.link;
             }
-        } else if !entered && node.link > cursor.node {
-            cursor.node = node.link;
         }
     }
+    out
 }
 
 /// The next slot of a leaf whose box lies within `radius` of `p` (conservatively, as in

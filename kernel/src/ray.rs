@@ -269,13 +269,18 @@ pub fn occluded(nodes: &[BvhNode], triangles: &[Triangle], ray: &Ray) -> bool {
     let boxes = RayBoxTest::new(ray);
     let t_far = ray.t_far;
     let mut cursor = BvhCursor::default();
-    while let Some(slot) = next_slot(nodes, &mut cursor, move |b: &Aabb| boxes.hits(b, t_far)) {
-        let s = slot as usize;
-        if s < triangles.len() && intersect_triangle(ray, &triangles[s], t_far).is_some() {
-            return true;
+    // One exit (see `bvh::next_slot_before`).
+    let mut hit = false;
+    while !hit {
+        match next_slot(nodes, &mut cursor, move |b: &Aabb| boxes.hits(b, t_far)) {
+            Some(slot) => {
+                let s = slot as usize;
+                hit = s < triangles.len() && intersect_triangle(ray, &triangles[s], t_far).is_some();
+            }
+            None => break,
         }
     }
-    false
+    hit
 }
 
 #[cfg(test)]

@@ -96,17 +96,24 @@ impl ScratchSet for ScratchBvh<'_> {
             cursor.node = self.first;
         }
         let end = self.end as usize;
-        while let Some(slot) =
-            next_near_point_before(self.nodes, end, cursor, [x0.x, x0.y, 0.0], radius)
-        {
-            let i = slot as usize;
-            if i < self.scratches.len() {
-                let s = self.scratches[i];
-                if s.distance_to(x0) <= radius {
-                    return Some(s);
+        // One exit (see `bvh::next_slot_before`).
+        let mut found = None;
+        let mut done = false;
+        while !done {
+            match next_near_point_before(self.nodes, end, cursor, [x0.x, x0.y, 0.0], radius) {
+                Some(slot) => {
+                    let i = slot as usize;
+                    if i < self.scratches.len() {
+                        let s = self.scratches[i];
+                        if s.distance_to(x0) <= radius {
+                            found = Some(s);
+                            done = true;
+                        }
+                    }
                 }
+                None => done = true,
             }
         }
-        None
+        found
     }
 }
