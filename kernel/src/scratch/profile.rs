@@ -117,7 +117,7 @@ pub fn mask_minus_profile(
     }
 }
 
-/// Where `‖β| − |κ‖/π` is below this (and `max(|β|, |κ|)/π` above [`TRI_SERIES_BELOW`]) the
+/// Where `||β| − |κ||/π` is below this (and `max(|β|, |κ|)/π` above [`TRI_SERIES_BELOW`]) the
 /// triangle's `M − P` is formed as the plain difference, which does not cancel there.
 const TRI_NEAR_POLE: f32 = 0.25;
 /// Below this `max(|β|, |κ|)/π` the divided difference of the triangle's real part is summed
