@@ -18,7 +18,7 @@
 //! multiple of `κ`: measured on the subset where `K·κ` binds (1 289 queries), `err/κ` ≤ 2.07
 //! (the Werner cancellation sweep, `conformance/tests/cancellation_sweep.rs`, measured up to
 //! 4.5 of its own conditioning measure with the same `K`). The formulas the sweep found
-//! unsound were 78 to 6 219 `κ` off (`docs/stability.md`). `1e-4` is the kernel's accuracy
+//! unsound were 10 to 6 200 `κ` off (`docs/stability.md`). `1e-4` is the kernel's accuracy
 //! target for well-conditioned queries.
 //!
 //! The committed subset (`reference/golden/sweep/`) runs by default; the full sweep
