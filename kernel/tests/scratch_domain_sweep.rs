@@ -23,12 +23,15 @@
 //!
 //! The committed subset (`reference/golden/sweep/`) runs by default; the full sweep
 //! (`python3 reference/scratch_sweep.py --full --out DIR`, 10⁵ queries per family) with
-//! `SCRATCH_SWEEP_DIR=DIR`.
+//! `SCRATCH_SWEEP_DIR=DIR`. `SCRATCH_SWEEP_DUMP=FILE` writes every query's first scratch's
+//! depth and width, min(cosθi, cosθo), σ, err, bound and κ for the stability map
+//! (`docs/scratch_stability_map.py`); `SCRATCH_SWEEP_OVER=FILE` every query over its bound.
 
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 use std::collections::BTreeMap;
+use std::fmt::Write as _;
 
 /// The multiple of `κ` a kernel result may be off by.
 const K: f64 = 8.0;
@@ -169,6 +172,7 @@ fn every_query_within_its_conditioning_bound() {
     let mut stats: BTreeMap<(usize, &'static str), Stat> = BTreeMap::new();
     let mut total = 0;
     let mut over_rows = Vec::new();
+    let mut dump = String::new();
     for (fi, family) in families.iter().enumerate() {
         let t = load(family);
         assert!(!t.rows.is_empty(), "{family}: no queries");
@@ -187,6 +191,15 @@ fn every_query_within_its_conditioning_bound() {
                 s.n_kappa_bound += 1;
                 s.worst_err_per_kappa = s.worst_err_per_kappa.max(err / kappa);
             }
+            writeln!(
+                dump,
+                "{family},{},{},{},{},{err},{bound},{kappa}",
+                r.d("s0_d"),
+                r.d("wi_z").min(r.d("wo_z")),
+                r.d("sigma"),
+                r.d("s0_w"),
+            )
+            .unwrap();
             if !(ratio <= 1.0) {
                 s.over += 1;
                 over_rows.push(format!(
@@ -219,6 +232,10 @@ fn every_query_within_its_conditioning_bound() {
         if s.over > 0 {
             bad.push(format!("{group}: {} over, worst {}", s.over, s.worst_row));
         }
+    }
+    if let Ok(path) = std::env::var("SCRATCH_SWEEP_DUMP") {
+        let head = "family,depth,cos,sigma,width,err,bound,kappa";
+        std::fs::write(&path, format!("{head}\n{dump}")).unwrap();
     }
     if let Ok(path) = std::env::var("SCRATCH_SWEEP_OVER") {
         std::fs::write(&path, over_rows.join("\n")).unwrap();
