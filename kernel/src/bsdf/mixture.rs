@@ -144,9 +144,9 @@ fn window_energy(
         Some(e) => eta_p_eq16(s, e, sigma) / (2.0 * math::SQRT_PI * sigma),
         None => {
             let (s_t, s_b) = frame.offset_from(x0);
-            let along = math::gauss_interval(
-                s_t - frame.half_len,
-                s_t + frame.half_len,
+            let along = math::gauss_interval_centered(
+                s_t,
+                frame.half_len,
                 sigma * core::f32::consts::FRAC_1_SQRT_2,
             );
             math::exp(-s_b * s_b / (sigma * sigma)) * along

@@ -320,9 +320,9 @@ pub fn along_power(mode: EtaMode, frame: &SegmentFrame, x0: Vec2, sigma: f32) ->
     let across = math::exp(-s_b * s_b / (sigma * sigma));
     let along = match mode {
         EtaMode::Infinite => math::SQRT_PI * sigma,
-        EtaMode::Finite => math::gauss_interval(
-            s_t - frame.half_len,
-            s_t + frame.half_len,
+        EtaMode::Finite => math::gauss_interval_centered(
+            s_t,
+            frame.half_len,
             sigma * core::f32::consts::FRAC_1_SQRT_2,
         ),
     };

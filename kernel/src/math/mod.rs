@@ -21,7 +21,9 @@ pub use complex::{C32, cis, cmul_i, cscale, csqrt};
 pub use expm1::{expm1, ln1p};
 pub use faddeeva::{faddeeva, faddeeva_lanes};
 pub use gamma::{gamma, gamma_inv, gamma_p, gamma_p_inv, gamma_q, gamma_q_inv, lgamma};
-pub use gauss_interval::{erf, gauss_fourier_interval, gauss_interval};
+pub use gauss_interval::{
+    erf, gauss_fourier_centered, gauss_fourier_interval, gauss_interval, gauss_interval_centered,
+};
 pub use si::{si, si_split, si_velinov, si_velinov_split};
 pub use trig_pi::{cis_pi, one_minus_cis_pi, sin_cos_pi, sinc_pi};
 

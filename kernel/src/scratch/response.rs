@@ -182,7 +182,7 @@ pub fn scratch_response_spectral<S: ScratchSet>(
 #[inline]
 fn area_density_of(frame: &SegmentFrame, width: f32, x0: Vec2, sigma: f32) -> f32 {
     let (s_t, s_b) = frame.offset_from(x0);
-    let along = math::gauss_interval(s_t - frame.half_len, s_t + frame.half_len, sigma);
+    let along = math::gauss_interval_centered(s_t, frame.half_len, sigma);
     width * math::exp(-0.5 * s_b * s_b / (sigma * sigma)) * along / (math::TAU * sigma * sigma)
 }
 

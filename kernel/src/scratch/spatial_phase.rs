@@ -4,7 +4,7 @@
 //! `η = ∫_{−L/2}^{L/2} ds G(c + s t) exp(−2πi ξ·(c + s t − x0))`. With the centre offset
 //! `(s_t, s_b)` from `x0` and `u = s + s_t`:
 //! `η = exp(−s_b²/(2σ²) − 2πi s_b ξ₂) ∫_{s_t−L/2}^{s_t+L/2} exp(−u²/(2σ²) − 2πi ξ₁ u) du`,
-//! whose last factor is [`crate::math::gauss_fourier_interval`] (overflow-free form of
+//! whose last factor is [`crate::math::gauss_fourier_centered`] (overflow-free form of
 //! App. A's `c0 [erf(·) − erf(·)]`).
 
 use super::record::SegmentFrame;
@@ -39,8 +39,7 @@ fn across(s_b: f32, xi2: f32, sigma: f32) -> C32 {
 pub fn eta_finite(frame: &SegmentFrame, x0: Vec2, xi: Vec2, sigma: f32) -> C32 {
     let (s_t, s_b) = frame.offset_from(x0);
     let (xi1, xi2) = xi_local(frame, xi);
-    let along =
-        math::gauss_fourier_interval(s_t - frame.half_len, s_t + frame.half_len, sigma, xi1);
+    let along = math::gauss_fourier_centered(s_t, frame.half_len, sigma, xi1);
     across(s_b, xi2, sigma) * along
 }
 
