@@ -20,7 +20,7 @@ built=$(date +%s)
 out=target/gpu-check
 mkdir -p "$out"
 status=0
-"$bin/scratchwave" run --scenes conformance/scenes --out "$out" >"$out/run.txt" || status=$?
+"$bin/scratchwave" run --scenes conformance/scenes --spirv-scenes yes --out "$out" >"$out/run.txt" || status=$?
 "$bin/examples/scene_timing" benches/scenes/velinov_table2.json 3 >"$out/timing.txt" || status=$?
 end=$(date +%s)
 echo "# scratchwave GPU check (adapter: $SCRATCHWAVE_ADAPTER)"

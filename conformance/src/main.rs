@@ -11,9 +11,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const USAGE: &str = "usage:
-  scratchwave run [--cases DIR] [--scenes DIR] [--out DIR]
+  scratchwave run [--cases DIR] [--scenes DIR] [--out DIR] [--spirv-scenes yes]
                                                   conformance run over the committed cases
-                                                  and scenes (embree and spirv renders vs cpu)
+                                                  and scenes (embree renders vs cpu; spirv too with --spirv-scenes yes)
   scratchwave table SPEC.json [--backend cpu|simd|spirv|all]
   scratchwave footprint SPEC.json [--backend cpu|simd|spirv]
   scratchwave light SPEC.json [--backend cpu|simd|spirv]
@@ -230,7 +230,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             render_command(file, &flags)
         }
         "run" => {
-            let (pos, flags) = parse_flags(rest, &["cases", "scenes", "out"])?;
+            let (pos, flags) = parse_flags(rest, &["cases", "scenes", "out", "spirv-scenes"])?;
             if !pos.is_empty() {
                 return Err(Failure::Usage("run takes no positional arguments".into()));
             }
@@ -257,7 +257,16 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             let out_dir = flag(&flags, "out")
                 .map(PathBuf::from)
                 .unwrap_or_else(|| root.join("target/conformance"));
-            conformance_run(&dirs, &scene_dirs, &out_dir)
+            let spirv_scenes = match flag(&flags, "spirv-scenes") {
+                None | Some("no") => false,
+                Some("yes") => true,
+                Some(other) => {
+                    return Err(Failure::Usage(format!(
+                        "--spirv-scenes takes yes or no, got {other:?}"
+                    )));
+                }
+            };
+            conformance_run(&dirs, &scene_dirs, &out_dir, spirv_scenes)
         }
         "-h" | "--help" | "help" => {
             println!("{USAGE}");
@@ -401,6 +410,7 @@ fn conformance_run(
     dirs: &[PathBuf],
     scene_dirs: &[PathBuf],
     out_dir: &Path,
+    spirv_scenes: bool,
 ) -> Result<ExitCode, Failure> {
     let cases = run::load_cases(dirs)?;
     if cases.is_empty() && scene_dirs.is_empty() {
@@ -433,10 +443,10 @@ fn conformance_run(
         .collect();
     let mut scene_reports = Vec::new();
     let diff_dir = out_dir.join("scenes");
-    let gpu = if scene_files.is_empty() {
-        Err("not needed".to_string())
+    let gpu = if scene_files.is_empty() || !spirv_scenes {
+        None
     } else {
-        scratchwave_spirv::Gpu::new().map_err(|e| format!("spirv unavailable: {e}"))
+        Some(scratchwave_spirv::Gpu::new().map_err(|e| format!("spirv unavailable: {e}")))
     };
     if !scene_files.is_empty() {
         std::fs::create_dir_all(&diff_dir).map_err(|e| {
@@ -448,14 +458,15 @@ fn conformance_run(
     }
     for (i, f) in scene_files.iter().enumerate() {
         eprintln!(
-            "[scene {}/{}] {} (embree and spirv vs cpu)",
+            "[scene {}/{}] {} (embree{} vs cpu)",
             i + 1,
             scene_files.len(),
-            f.display()
+            f.display(),
+            if gpu.is_some() { " and spirv" } else { "" }
         );
         scene_reports.push(scratchwave_conformance::scenes::compare_scene(
             f,
-            gpu.as_ref().map_err(String::as_str),
+            gpu.as_ref().map(|g| g.as_ref().map_err(String::as_str)),
             Some(&diff_dir),
         ));
     }
@@ -499,7 +510,7 @@ fn conformance_run(
                 "against_cpu": r.pairs.iter().map(|p| serde_json::json!({
                     "backend": p.backend, "worst_rel": p.worst, "p999_rel": p.p999,
                     "bad_pixels": p.bad_pixels, "listed": p.listed, "seconds": p.seconds,
-                    "pass": p.pass, "error": p.error,
+                    "pass": p.pass, "known_issue": p.known_issue, "error": p.error,
                 })).collect::<Vec<_>>(),
             })).collect::<Vec<_>>()});
     std::fs::write(

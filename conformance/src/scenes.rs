@@ -37,6 +37,10 @@ pub struct PairReport {
     pub seconds: f64,
     /// Whether it passed.
     pub pass: bool,
+    /// A known defect that makes this comparison fail, declared in the scene file
+    /// (`"conformance": {"spirv_known_issue": …}`): the comparison is reported but does not
+    /// fail the scene.
+    pub known_issue: Option<String>,
     /// A failure to render, if any.
     pub error: Option<String>,
 }
@@ -88,7 +92,11 @@ pub fn tolerance(path: &Path) -> Result<(f64, usize, String), SpecError> {
     let c = v
         .get("conformance")
         .ok_or_else(|| SpecError::field("conformance", "missing required field"))?;
-    let o = Obj::new(c, "conformance", &["rel_tol", "max_bad_pixels", "why"])?;
+    let o = Obj::new(
+        c,
+        "conformance",
+        &["rel_tol", "max_bad_pixels", "why", "spirv_known_issue"],
+    )?;
     let rel = o.num("rel_tol")?;
     let bad = if o.get("max_bad_pixels").is_some() {
         o.integer("max_bad_pixels", 1e9)? as usize
@@ -101,6 +109,17 @@ pub fn tolerance(path: &Path) -> Result<(f64, usize, String), SpecError> {
         .ok_or_else(|| SpecError::field("conformance.why", "expected a string"))?
         .to_string();
     Ok((rel, bad, why))
+}
+
+/// The scene file's `conformance.spirv_known_issue`, if any (read after [`tolerance`] has
+/// validated the object).
+pub fn known_issue(path: &Path) -> Option<String> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let v = scratchwave_spec::json::parse(&text, &path.display().to_string()).ok()?;
+    v.get("conformance")?
+        .get("spirv_known_issue")?
+        .as_str()
+        .map(str::to_string)
 }
 
 /// Per-pixel relative differences (the largest over R, G, B) of two images.
@@ -125,7 +144,13 @@ pub fn pixel_differences(a: &[[f32; 3]], b: &[[f32; 3]]) -> Vec<f64> {
 }
 
 /// The per-pixel comparison of `b` with the reference `a` (its error left `None`).
-pub fn compare_images(backend: &str, a: &Image, b: &Image, rel_tol: f64, max_bad: usize) -> PairReport {
+pub fn compare_images(
+    backend: &str,
+    a: &Image,
+    b: &Image,
+    rel_tol: f64,
+    max_bad: usize,
+) -> PairReport {
     let mut r = PairReport {
         backend: backend.to_string(),
         worst: f64::NAN,
@@ -134,6 +159,7 @@ pub fn compare_images(backend: &str, a: &Image, b: &Image, rel_tol: f64, max_bad
         listed: Vec::new(),
         seconds: 0.0,
         pass: false,
+        known_issue: None,
         error: None,
     };
     if (a.width, a.height) != (b.width, b.height) || a.rgb.len() != b.rgb.len() {
@@ -185,10 +211,15 @@ pub fn difference_image(a: &Image, b: &Image) -> Image {
     }
 }
 
-/// Renders one scene on `cpu`, `embree` and (with a device) `spirv`, and compares the
-/// latter two with `cpu`. Without a device the `spirv` comparison fails with `gpu_error`.
-/// With `diff_dir`, each comparison's difference image is written there.
-pub fn compare_scene(path: &Path, gpu: Result<&Gpu, &str>, diff_dir: Option<&Path>) -> SceneReport {
+/// Renders one scene on `cpu`, `embree` and (when `gpu` is given) `spirv`, and compares the
+/// others with `cpu`. A `gpu` of `Some(Err(reason))` (no device) fails the `spirv`
+/// comparison with that reason. With `diff_dir`, each comparison's difference image is
+/// written there.
+pub fn compare_scene(
+    path: &Path,
+    gpu: Option<Result<&Gpu, &str>>,
+    diff_dir: Option<&Path>,
+) -> SceneReport {
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -211,17 +242,17 @@ pub fn compare_scene(path: &Path, gpu: Result<&Gpu, &str>, diff_dir: Option<&Pat
         let a = render_scene(&scene, Backend::Cpu, &|_, _| {}).map_err(|e| e.to_string())?;
         r.size = (a.image.width, a.image.height);
         r.cpu_seconds = a.stats.seconds;
-        let others: [(&str, Result<Rendered, String>); 2] = [
-            (
-                "embree",
-                render_scene(&scene, Backend::Embree, &|_, _| {}).map_err(|e| e.to_string()),
-            ),
-            (
+        let mut others: Vec<(&str, Result<Rendered, String>)> = vec![(
+            "embree",
+            render_scene(&scene, Backend::Embree, &|_, _| {}).map_err(|e| e.to_string()),
+        )];
+        if let Some(gpu) = gpu {
+            others.push((
                 "spirv",
                 gpu.map_err(str::to_string)
                     .and_then(|g| render_spirv(g, &scene, &|_, _| {})),
-            ),
-        ];
+            ));
+        }
         for (backend, out) in others {
             let pair = match out {
                 Ok(b) => {
@@ -231,7 +262,9 @@ pub fn compare_scene(path: &Path, gpu: Result<&Gpu, &str>, diff_dir: Option<&Pat
                         && p.error.is_none()
                     {
                         let file = dir.join(format!("{}-{backend}-diff.exr", r.name));
-                        if let Err(e) = output::write_exr(&file, &difference_image(&a.image, &b.image), &[]) {
+                        if let Err(e) =
+                            output::write_exr(&file, &difference_image(&a.image, &b.image), &[])
+                        {
                             p.error = Some(e.to_string());
                             p.pass = false;
                         }
@@ -246,12 +279,19 @@ pub fn compare_scene(path: &Path, gpu: Result<&Gpu, &str>, diff_dir: Option<&Pat
                     listed: Vec::new(),
                     seconds: 0.0,
                     pass: false,
+                    known_issue: None,
                     error: Some(e),
                 },
             };
             r.pairs.push(pair);
         }
-        r.pass = r.pairs.iter().all(|p| p.pass && p.error.is_none());
+        if let Some(p) = r.pairs.iter_mut().find(|p| p.backend == "spirv") {
+            p.known_issue = known_issue(path);
+        }
+        r.pass = r
+            .pairs
+            .iter()
+            .all(|p| (p.pass && p.error.is_none()) || p.known_issue.is_some());
         Ok(())
     })();
     if let Err(e) = result {
@@ -281,7 +321,13 @@ pub fn markdown(reports: &[SceneReport]) -> String {
                 r.rel_tol,
                 r.cpu_seconds,
                 p.seconds,
-                if p.pass && p.error.is_none() { "yes" } else { "**no**" }
+                if p.pass && p.error.is_none() {
+                    "yes"
+                } else if p.known_issue.is_some() {
+                    "known issue"
+                } else {
+                    "**no**"
+                }
             );
         }
     }
@@ -305,13 +351,22 @@ pub fn markdown(reports: &[SceneReport]) -> String {
                     p.backend,
                     r.rel_tol,
                     list.join(", "),
-                    if p.bad_pixels > p.listed.len() { ", …" } else { "" }
+                    if p.bad_pixels > p.listed.len() {
+                        ", …"
+                    } else {
+                        ""
+                    }
                 );
             }
         }
     }
     for r in reports {
         s += &format!("\n- {}: {}", r.name, r.why);
+        for p in &r.pairs {
+            if let Some(k) = &p.known_issue {
+                s += &format!(" Known issue ({}): {k}", p.backend);
+            }
+        }
     }
     s.push('\n');
     s

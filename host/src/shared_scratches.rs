@@ -49,11 +49,9 @@ impl SharedScratchData {
             let slot_base = index(out.scratches.len(), "scratches")?;
             out.nodes.extend(lookup.nodes().iter().map(|n| {
                 let mut n = *n;
-                n.link = n.link.saturating_add(if n.is_leaf() {
-                    slot_base
-                } else {
-                    node_base
-                });
+                n.link = n
+                    .link
+                    .saturating_add(if n.is_leaf() { slot_base } else { node_base });
                 n
             }));
             out.scratches.extend_from_slice(lookup.scratches());

@@ -242,8 +242,7 @@ pub fn closest_hit(
     let mut cursor = BvhCursor::default();
     loop {
         let t_max = best.t;
-        let Some(slot) = next_slot(nodes, &mut cursor, move |b: &Aabb| boxes.hits(b, t_max))
-        else {
+        let Some(slot) = next_slot(nodes, &mut cursor, move |b: &Aabb| boxes.hits(b, t_max)) else {
             break;
         };
         let s = slot as usize;
@@ -275,7 +274,8 @@ pub fn occluded(nodes: &[BvhNode], triangles: &[Triangle], ray: &Ray) -> bool {
         match next_slot(nodes, &mut cursor, move |b: &Aabb| boxes.hits(b, t_far)) {
             Some(slot) => {
                 let s = slot as usize;
-                hit = s < triangles.len() && intersect_triangle(ray, &triangles[s], t_far).is_some();
+                hit =
+                    s < triangles.len() && intersect_triangle(ray, &triangles[s], t_far).is_some();
             }
             None => break,
         }

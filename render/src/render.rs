@@ -199,7 +199,18 @@ fn render_tile<Q: RayQueries + ?Sized>(
                 }
                 ray += f.count as usize;
                 counts.shadow_rays += f.count;
-                shade_light(&frame, m, &lk, hp, light, f, bits, &occ, &mut acc, &mut counts);
+                shade_light(
+                    &frame,
+                    m,
+                    &lk,
+                    hp,
+                    light,
+                    f,
+                    bits,
+                    &occ,
+                    &mut acc,
+                    &mut counts,
+                );
             }
         }
         let rgb = spectrum::finish(frame.mode(), acc, frame.y_norm);

@@ -293,7 +293,8 @@ pub fn render_pixels(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] surfaces: &[Surface],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] materials: &[ShadeMaterial],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] lights: &[SceneLight],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] scratch_materials: &[MaterialScratches],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)]
+    scratch_materials: &[MaterialScratches],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] scratch_nodes: &[BvhNode],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 12)] scratches: &[Scratch],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 13)] offsets: &[u32],

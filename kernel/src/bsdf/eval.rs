@@ -56,7 +56,8 @@ pub fn eval<S: ScratchSet>(
     let ghs_base = m.has_ghs_base();
     let rho = match (m.scene_model(), sp.footprint()) {
         (SceneModel::Velinov, Some(e)) => {
-            vals = velinov_footprint_brdf_spectral(&params, &m.material, wi, wo, &e, &wl.nm, n, set);
+            vals =
+                velinov_footprint_brdf_spectral(&params, &m.material, wi, wo, &e, &wl.nm, n, set);
             // The renderer weights a GHS base by 1 − ρc at the footprint centre.
             if ghs_base {
                 scratch_area_density(set, sp.x(), sigma)

@@ -109,7 +109,11 @@ pub fn velinov_footprint_brdf_spectral<S: ScratchSet>(
     set: &S,
 ) -> [f32; MAX_SPECTRAL] {
     let mut out = [0.0; MAX_SPECTRAL];
-    let n = if count < MAX_SPECTRAL { count } else { MAX_SPECTRAL };
+    let n = if count < MAX_SPECTRAL {
+        count
+    } else {
+        MAX_SPECTRAL
+    };
     let wi = direction(wi.to_array());
     let wo = direction(wo.to_array());
     let sigma = params.sigma_um;

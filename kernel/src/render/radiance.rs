@@ -127,6 +127,8 @@ impl FrameParams {
     /// pdf 1.
     pub fn wavelength_group(&self, k0: u32) -> Wavelengths {
         let n = self.wavelength_count();
+        // Plain comparisons: `saturating_sub`/`min` lower to intrinsics rust-gpu may not take.
+        #[allow(clippy::implicit_saturating_sub)]
         let left = if n > k0 { n - k0 } else { 0 };
         let count = if left < MAX_LAMBDAS as u32 {
             left
@@ -474,15 +476,7 @@ fn area_light<S: ScratchSet, O: Occlusion>(
                 while slot < area::MAX_NODES as usize {
                     if let Some(node) = visible[slot] {
                         l += if closed {
-                            shading::base_node_radiance(
-                                m,
-                                sp,
-                                wo,
-                                &node,
-                                light.emission,
-                                lam,
-                                lk,
-                            )
+                            shading::base_node_radiance(m, sp, wo, &node, light.emission, lam, lk)
                         } else {
                             node_l[slot][j]
                         };

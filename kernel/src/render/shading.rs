@@ -165,7 +165,9 @@ pub fn brdf_spectrum<S: ScratchSet>(
 pub fn delta_direction(light: &SceneLight, p: Vec3) -> Option<(Vec3, f32, f32)> {
     let p0 = Vec3::new(light.p0[0], light.p0[1], light.p0[2]);
     match SceneLightKind::from_u32(light.kind) {
-        SceneLightKind::Directional => Some((p0.normalize_or_zero(), f32::INFINITY, light.emission)),
+        SceneLightKind::Directional => {
+            Some((p0.normalize_or_zero(), f32::INFINITY, light.emission))
+        }
         SceneLightKind::Point => {
             let d = p0 - p;
             let d2 = d.length_squared();
