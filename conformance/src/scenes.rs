@@ -45,6 +45,23 @@ pub struct PairReport {
     pub error: Option<String>,
 }
 
+impl PairReport {
+    /// A comparison not (yet) measured: no differences, not passed, with `error` if any.
+    fn unmeasured(backend: &str, error: Option<String>) -> PairReport {
+        PairReport {
+            backend: backend.to_string(),
+            worst: f64::NAN,
+            p999: f64::NAN,
+            bad_pixels: 0,
+            listed: Vec::new(),
+            seconds: 0.0,
+            pass: false,
+            known_issue: None,
+            error,
+        }
+    }
+}
+
 /// One scene's comparisons.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneReport {
@@ -122,8 +139,9 @@ pub fn known_issue(path: &Path) -> Option<String> {
         .map(str::to_string)
 }
 
-/// Per-pixel relative differences (the largest over R, G, B) of two images.
-pub fn pixel_differences(a: &[[f32; 3]], b: &[[f32; 3]]) -> Vec<f64> {
+/// Per-pixel, per-channel relative differences `|x − y| / max(|x|, |y|, 1e-6·peak)` of two
+/// images (`peak` the largest value of either).
+pub fn channel_differences(a: &[[f32; 3]], b: &[[f32; 3]]) -> Vec<[f64; 3]> {
     let peak = a
         .iter()
         .chain(b)
@@ -133,13 +151,19 @@ pub fn pixel_differences(a: &[[f32; 3]], b: &[[f32; 3]]) -> Vec<f64> {
     a.iter()
         .zip(b)
         .map(|(p, q)| {
-            (0..3)
-                .map(|c| {
-                    let (x, y) = (f64::from(p[c]), f64::from(q[c]));
-                    (x - y).abs() / x.abs().max(y.abs()).max(floor)
-                })
-                .fold(0.0, f64::max)
+            [0, 1, 2].map(|c| {
+                let (x, y) = (f64::from(p[c]), f64::from(q[c]));
+                (x - y).abs() / x.abs().max(y.abs()).max(floor)
+            })
         })
+        .collect()
+}
+
+/// Per-pixel relative differences (the largest over R, G, B) of two images.
+pub fn pixel_differences(a: &[[f32; 3]], b: &[[f32; 3]]) -> Vec<f64> {
+    channel_differences(a, b)
+        .into_iter()
+        .map(|d| d.into_iter().fold(0.0, f64::max))
         .collect()
 }
 
@@ -151,17 +175,7 @@ pub fn compare_images(
     rel_tol: f64,
     max_bad: usize,
 ) -> PairReport {
-    let mut r = PairReport {
-        backend: backend.to_string(),
-        worst: f64::NAN,
-        p999: f64::NAN,
-        bad_pixels: 0,
-        listed: Vec::new(),
-        seconds: 0.0,
-        pass: false,
-        known_issue: None,
-        error: None,
-    };
+    let mut r = PairReport::unmeasured(backend, None);
     if (a.width, a.height) != (b.width, b.height) || a.rgb.len() != b.rgb.len() {
         r.error = Some(format!(
             "image size {}x{} differs from cpu's {}x{}",
@@ -188,25 +202,15 @@ pub fn compare_images(
     r
 }
 
-/// The per-pixel, per-channel relative difference of two images of one size, as an image.
+/// The per-pixel, per-channel relative difference of two images of one size
+/// ([`channel_differences`]), as an image.
 pub fn difference_image(a: &Image, b: &Image) -> Image {
-    let peak = a
-        .rgb
-        .iter()
-        .chain(&b.rgb)
-        .flat_map(|p| p.iter())
-        .fold(0.0f32, |m, &x| m.max(x.abs()));
-    let floor = (peak * 1e-6).max(f32::MIN_POSITIVE);
     Image {
         width: a.width,
         height: a.height,
-        rgb: a
-            .rgb
-            .iter()
-            .zip(&b.rgb)
-            .map(|(p, q)| {
-                [0, 1, 2].map(|c| (p[c] - q[c]).abs() / p[c].abs().max(q[c].abs()).max(floor))
-            })
+        rgb: channel_differences(&a.rgb, &b.rgb)
+            .into_iter()
+            .map(|d| d.map(|x| x as f32))
             .collect(),
     }
 }
@@ -271,17 +275,7 @@ pub fn compare_scene(
                     }
                     p
                 }
-                Err(e) => PairReport {
-                    backend: backend.to_string(),
-                    worst: f64::NAN,
-                    p999: f64::NAN,
-                    bad_pixels: 0,
-                    listed: Vec::new(),
-                    seconds: 0.0,
-                    pass: false,
-                    known_issue: None,
-                    error: Some(e),
-                },
+                Err(e) => PairReport::unmeasured(backend, Some(e)),
             };
             r.pairs.push(pair);
         }
