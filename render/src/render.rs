@@ -12,9 +12,9 @@ use scratchwave_kernel::ray::Ray;
 use scratchwave_kernel::render::camera::Camera;
 use scratchwave_kernel::render::pixel::sample_offset;
 use scratchwave_kernel::render::radiance::{
-    FirstRays, FrameParams, HitPoint, Occlusion, ShadeCounts, first_rays, hit_point, shade_light,
+    FirstRays, FrameParams, HitPoint, Occlusion, ShadeCounts, first_rays, hit_point, pixel_rgb,
+    shade_light,
 };
-use scratchwave_kernel::render::spectrum;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
@@ -213,9 +213,7 @@ fn render_tile<Q: RayQueries + ?Sized>(
                 );
             }
         }
-        let rgb = spectrum::finish(frame.mode(), acc, frame.y_norm);
-        let inv = 1.0 / spp as f32;
-        out.push([rgb[0] * inv, rgb[1] * inv, rgb[2] * inv]);
+        out.push(pixel_rgb(&frame, acc));
     }
     counters
         .shading

@@ -592,6 +592,16 @@ impl<'a> SceneScratches<'a> for SharedScratches<'a> {
     }
 }
 
+/// A pixel's linear RGB from its accumulator summed over its samples
+/// ([`spectrum::finish`], then the mean over `frame.spp` samples).
+#[inline]
+pub fn pixel_rgb(frame: &FrameParams, acc: [f32; 3]) -> [f32; 3] {
+    let rgb = spectrum::finish(frame.mode(), acc, frame.y_norm);
+    let spp = if frame.spp > 1 { frame.spp } else { 1 };
+    let inv = 1.0 / spp as f32;
+    [rgb[0] * inv, rgb[1] * inv, rgb[2] * inv]
+}
+
 /// The value of one pixel and the work it took.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 #[repr(C)]
@@ -673,10 +683,8 @@ pub fn pixel_radiance<'a, T: Tracer, L: SceneScratches<'a>>(
             );
         }
     }
-    let rgb = spectrum::finish(frame.mode(), acc, frame.y_norm);
-    let inv = 1.0 / spp as f32;
     PixelValue {
-        rgb: [rgb[0] * inv, rgb[1] * inv, rgb[2] * inv],
+        rgb: pixel_rgb(frame, acc),
         shading: counts.shading,
         shadow_rays: counts.shadow_rays,
         pad: [0; 3],
