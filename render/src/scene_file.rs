@@ -6,12 +6,8 @@ use crate::scene::{
     DEFAULT_UNIT_UM, Footprint, LightDef, Lookup, Object, RenderSettings, Scene, SceneMaterial,
     Shadows, Shape, Spectrum,
 };
-use scratchwave_kernel::material::Material;
 use scratchwave_kernel::render::camera::{Camera, Projection};
-use scratchwave_kernel::render::shading::{BaseKind, SceneModel, ShadeMaterial};
 use scratchwave_kernel::render::spectrum::SpectrumMode;
-use scratchwave_kernel::scratch::Scratch;
-use scratchwave_kernel::table::{Model, TableParams};
 use scratchwave_spec::json::{self, Obj};
 use scratchwave_spec::{SpecError, spec};
 use serde_json::Value;
@@ -265,19 +261,8 @@ fn camera(v: &Value) -> Result<Camera, SpecError> {
     Ok(cam)
 }
 
-/// A material's `"scratches"`: a list of sources (inline scratches, `{"file"}`,
-/// `{"generate"}`; `docs/scratches.md`), files relative to the scene's directory; at most
-/// `budget` segments.
-fn material_scratches(
-    v: &Value,
-    path: &str,
-    base_dir: &Path,
-    budget: usize,
-) -> Result<Vec<Scratch>, SpecError> {
-    scratchwave_spec::scratches::scratch_sources_with_limit(v, path, base_dir, budget)
-}
-
-/// The materials; `budget` scratch segments for all of them together.
+/// The materials (`scratchwave_spec::material::scene_material` each); `budget` scratch
+/// segments for all of them together.
 fn materials(
     v: &Value,
     base_dir: &Path,
@@ -290,86 +275,13 @@ fn materials(
     let mut by_name = HashMap::new();
     for (name, mv) in map {
         let path = format!("materials.{name}");
-        let m = Obj::new(
-            mv,
-            &path,
-            &[
-                "model",
-                "sigma_um",
-                "material",
-                "options",
-                "scratches",
-                "base",
-            ],
-        )?;
-        let model = m.choice("model", &["werner", "werner_blended", "velinov", "ghs"])?;
-        let mut shade = ShadeMaterial::default();
-        let mut scratches = Vec::new();
-        if model == "ghs" {
-            for key in ["sigma_um", "options", "scratches", "base"] {
-                if m.get(key).is_some() {
-                    return Err(SpecError::field(
-                        m.path_of(key),
-                        "not used by model \"ghs\"",
-                    ));
-                }
-            }
-            shade.model = SceneModel::Ghs as u32;
-            shade.ghs = spec::ghs_material(m.req("material")?, &m.path_of("material"))?;
-        } else {
-            let (tm, sm) = match model {
-                "werner_blended" => (Model::WernerBlended, SceneModel::WernerBlended),
-                "velinov" => (Model::Velinov, SceneModel::Velinov),
-                _ => (Model::Werner, SceneModel::Werner),
-            };
-            shade.model = sm as u32;
-            shade.material = match m.get("material") {
-                Some(x) => spec::material(x, &m.path_of("material"))?,
-                None => Material::constant(1.0),
-            };
-            shade.table = TableParams {
-                model: tm as u32,
-                sigma_um: spec::sigma(&m)?,
-                ..TableParams::default()
-            };
-            if let Some(o) = m.get("options") {
-                spec::options(o, &m.path_of("options"), tm, &mut shade.table)?;
-            }
-            if let Some(s) = m.get("scratches") {
-                scratches = material_scratches(s, &m.path_of("scratches"), base_dir, budget)?;
-                budget -= scratches.len().min(budget);
-            }
-            if let Some(b) = m.get("base") {
-                let bp = m.path_of("base");
-                if tm == Model::Werner {
-                    return Err(SpecError::field(
-                        bp,
-                        "model \"werner\" has its own base; use \"werner_blended\"",
-                    ));
-                }
-                match b.as_str() {
-                    Some("smooth") => shade.base = BaseKind::Smooth as u32,
-                    Some("none") => shade.base = BaseKind::None as u32,
-                    Some(other) => {
-                        return Err(SpecError::field(
-                            bp,
-                            format!(
-                                "unknown value {other:?} (expected \"smooth\", \"none\" or a GHS material object)"
-                            ),
-                        ));
-                    }
-                    None => {
-                        shade.base = BaseKind::Ghs as u32;
-                        shade.ghs = spec::ghs_material(b, &bp)?;
-                    }
-                }
-            }
-        }
+        let m = scratchwave_spec::material::scene_material(mv, &path, base_dir, budget)?;
+        budget -= m.scratches.len().min(budget);
         by_name.insert(name.clone(), out.len());
         out.push(SceneMaterial {
             name: name.clone(),
-            shade,
-            scratches,
+            shade: m.shade,
+            scratches: m.scratches,
         });
     }
     Ok((out, by_name))

@@ -6,12 +6,15 @@
 //! - [`json`]: the field-checking object reader and number conversions;
 //! - [`spec`]: table and footprint specs → the batches of `scratchwave-host`;
 //! - [`light`]: the light spec of `scratchwave light` → kernel light records;
+//! - [`material`]: a scene material (model, reflectance, options, base, scratches) → the
+//!   kernel's shading record, for the scene reader and the C/Python bindings;
 //! - [`scratches`]: a material's scratch sources (inline, files, seeded patterns) → scratch
 //!   segments (formats in `docs/scratches.md`).
 
 pub mod error;
 pub mod json;
 pub mod light;
+pub mod material;
 pub mod scratches;
 pub mod spec;
 

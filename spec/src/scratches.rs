@@ -178,19 +178,10 @@ fn csv_row(line: &str) -> Result<Scratch, SpecError> {
     }
     let mut x = [0.0f64; 6];
     for k in 0..6 {
-        let v: f64 = cols[k].parse().map_err(|_| {
+        x[k] = cols[k].parse().map_err(|_| {
             SpecError::field(names[k], format!("expected a number, got {:?}", cols[k]))
         })?;
-        if !v.is_finite() {
-            return Err(SpecError::field(names[k], "must be finite"));
-        }
-        if k < 4 {
-            json::to_f32(v, names[k])?;
-        }
-        x[k] = v;
     }
-    let width = json::positive(x[4], "width", true)?;
-    let depth = json::positive(x[5], "depth", true)?;
     let profile = match cols[6] {
         "rect" => Profile::Rect,
         "triangle" => Profile::Triangle,
@@ -201,7 +192,26 @@ fn csv_row(line: &str) -> Result<Scratch, SpecError> {
             ));
         }
     };
-    segment([x[0], x[1]], [x[2], x[3]], width, depth, profile, "x1")
+    scratch_from_row(x, profile, "")
+}
+
+/// One scratch from the numbers of a CSV row, `[x0, y0, x1, y1, width, depth]` (µm): end
+/// points finite and within f32 range, width and depth ≥ 0. Errors name the column, after
+/// `prefix` (`""` for a CSV row, `"segments[3]."` for the Python binding's array rows).
+pub fn scratch_from_row(x: [f64; 6], profile: Profile, prefix: &str) -> Result<Scratch, SpecError> {
+    let names: Vec<&str> = CSV_HEADER.split(',').collect();
+    let name = |k: usize| format!("{prefix}{}", names[k]);
+    for (k, v) in x.iter().enumerate() {
+        if !v.is_finite() {
+            return Err(SpecError::field(name(k), "must be finite"));
+        }
+        if k < 4 {
+            json::to_f32(*v, &name(k))?;
+        }
+    }
+    let width = json::positive(x[4], &name(4), true)?;
+    let depth = json::positive(x[5], &name(5), true)?;
+    segment([x[0], x[1]], [x[2], x[3]], width, depth, profile, &name(2))
 }
 
 /// The `generate` object at `gp` → the pattern (with [`MAX_SEGMENTS`] as its limit) and

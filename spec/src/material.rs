@@ -1,0 +1,113 @@
+//! A scene material (JSON) → the kernel's [`ShadeMaterial`] and its scratches: the
+//! `materials.NAME` objects of a scene file (`docs/render.md`), also what the C and Python
+//! bindings take. Every rejection names the field.
+
+use crate::error::SpecError;
+use crate::json::Obj;
+use crate::spec;
+use scratchwave_kernel::material::Material;
+use scratchwave_kernel::render::shading::{BaseKind, SceneModel, ShadeMaterial};
+use scratchwave_kernel::scratch::Scratch;
+use scratchwave_kernel::table::{Model, TableParams};
+use serde_json::Value;
+use std::path::Path;
+
+/// A material as read: the kernel record and its scratches (µm of scratch space).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MaterialSpec {
+    /// Model, options, reflectance, GHS parameters, base.
+    pub shade: ShadeMaterial,
+    /// Scratches in scratch space (µm), from the `"scratches"` sources.
+    pub scratches: Vec<Scratch>,
+}
+
+/// `{"model": "werner" | "werner_blended" | "velinov" | "ghs", "sigma_um", "material",
+/// "options", "scratches", "base"}` at JSON path `path`. Scratch files are read relative to
+/// `base_dir`; at most `budget` scratch segments are accepted.
+pub fn scene_material(
+    v: &Value,
+    path: &str,
+    base_dir: &Path,
+    budget: usize,
+) -> Result<MaterialSpec, SpecError> {
+    let m = Obj::new(
+        v,
+        path,
+        &[
+            "model",
+            "sigma_um",
+            "material",
+            "options",
+            "scratches",
+            "base",
+        ],
+    )?;
+    let model = m.choice("model", &["werner", "werner_blended", "velinov", "ghs"])?;
+    let mut shade = ShadeMaterial::default();
+    let mut scratches = Vec::new();
+    if model == "ghs" {
+        for key in ["sigma_um", "options", "scratches", "base"] {
+            if m.get(key).is_some() {
+                return Err(SpecError::field(
+                    m.path_of(key),
+                    "not used by model \"ghs\"",
+                ));
+            }
+        }
+        shade.model = SceneModel::Ghs as u32;
+        shade.ghs = spec::ghs_material(m.req("material")?, &m.path_of("material"))?;
+        return Ok(MaterialSpec { shade, scratches });
+    }
+    let (tm, sm) = match model {
+        "werner_blended" => (Model::WernerBlended, SceneModel::WernerBlended),
+        "velinov" => (Model::Velinov, SceneModel::Velinov),
+        _ => (Model::Werner, SceneModel::Werner),
+    };
+    shade.model = sm as u32;
+    shade.material = match m.get("material") {
+        Some(x) => spec::material(x, &m.path_of("material"))?,
+        None => Material::constant(1.0),
+    };
+    shade.table = TableParams {
+        model: tm as u32,
+        sigma_um: spec::sigma(&m)?,
+        ..TableParams::default()
+    };
+    if let Some(o) = m.get("options") {
+        spec::options(o, &m.path_of("options"), tm, &mut shade.table)?;
+    }
+    if let Some(s) = m.get("scratches") {
+        scratches = crate::scratches::scratch_sources_with_limit(
+            s,
+            &m.path_of("scratches"),
+            base_dir,
+            budget,
+        )?;
+    }
+    if let Some(b) = m.get("base") {
+        let bp = m.path_of("base");
+        if tm == Model::Werner {
+            return Err(SpecError::field(
+                bp,
+                "model \"werner\" has its own base; use \"werner_blended\"",
+            ));
+        }
+        match b.as_str() {
+            Some("smooth") => shade.base = BaseKind::Smooth as u32,
+            Some("none") => shade.base = BaseKind::None as u32,
+            Some(other) => {
+                return Err(SpecError::field(
+                    bp,
+                    format!(
+                        "unknown value {other:?} (expected \"smooth\", \"none\" or a GHS material object)"
+                    ),
+                ));
+            }
+            None => {
+                shade.base = BaseKind::Ghs as u32;
+                shade.ghs = spec::ghs_material(b, &bp)?;
+            }
+        }
+    }
+    Ok(MaterialSpec { shade, scratches })
+}
