@@ -20,7 +20,7 @@ pub mod render;
 pub mod scene;
 pub mod scene_file;
 
-pub use render::{Image, RenderStats};
+pub use render::{Image, Region, RenderStats};
 pub use scene::Scene;
 
 use scratchwave_spec::SpecError;
@@ -81,13 +81,37 @@ pub fn render_scene(
     backend: Backend,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Rendered, RenderError> {
+    let full = Region::full(scene.camera.width_px, scene.camera.height_px);
+    render_scene_region(scene, backend, full, progress)
+}
+
+/// [`render_scene`] for the pixels of `region` only (an image of the region's size, equal
+/// bit for bit to that part of the whole image): tiles of a render spread over processes or
+/// machines (the Python binding's Dask renderer). A region outside the image is an input
+/// error naming `region`.
+pub fn render_scene_region(
+    scene: &Scene,
+    backend: Backend,
+    region: Region,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Rendered, RenderError> {
+    let (w, h) = (scene.camera.width_px, scene.camera.height_px);
+    if !region.fits(w, h) {
+        return Err(RenderError::Input(SpecError::field(
+            "region",
+            format!(
+                "{}×{} pixels at ({}, {}) is empty or leaves the {w}×{h} image",
+                region.width, region.height, region.x0, region.y0
+            ),
+        )));
+    }
     let t0 = Instant::now();
     let prep = prepare::prepare(scene);
     let (image, stats, build_seconds) = match backend {
         Backend::Cpu => {
             let bvh = prep.cpu_bvh();
             let build = t0.elapsed().as_secs_f64();
-            let (i, s) = render::render(scene, &prep, &bvh, progress);
+            let (i, s) = render::render_region(scene, &prep, &bvh, region, progress);
             (i, s, build)
         }
         Backend::Embree => {
@@ -97,7 +121,7 @@ pub fn render_scene(
             b.add_triangle_mesh(&v, &i)?;
             let es = b.commit()?;
             let build = t0.elapsed().as_secs_f64();
-            let (i, s) = render::render(scene, &prep, &es, progress);
+            let (i, s) = render::render_region(scene, &prep, &es, region, progress);
             (i, s, build)
         }
     };

@@ -58,6 +58,39 @@ struct Counters {
     shading: AtomicU64,
 }
 
+/// A rectangle of pixels: columns `x0..x0 + width`, rows `y0..y0 + height` (from the top).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Region {
+    /// First column.
+    pub x0: u32,
+    /// First row.
+    pub y0: u32,
+    /// Columns.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+}
+
+impl Region {
+    /// The whole `width × height` image.
+    pub fn full(width: u32, height: u32) -> Region {
+        Region {
+            x0: 0,
+            y0: 0,
+            width,
+            height,
+        }
+    }
+
+    /// Whether the region is non-empty and lies inside a `width × height` image.
+    pub fn fits(&self, width: u32, height: u32) -> bool {
+        self.width > 0
+            && self.height > 0
+            && u64::from(self.x0) + u64::from(self.width) <= u64::from(width)
+            && u64::from(self.y0) + u64::from(self.height) <= u64::from(height)
+    }
+}
+
 /// Renders `scene` (prepared as `prep`) with `queries` for primary and shadow rays.
 /// `progress(done_tiles, total_tiles)` is called from worker threads as tiles finish.
 pub fn render<Q: RayQueries + ?Sized>(
@@ -67,7 +100,22 @@ pub fn render<Q: RayQueries + ?Sized>(
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> (Image, RenderStats) {
     let cam = scene.camera;
-    let (w, h) = (cam.width_px, cam.height_px);
+    let full = Region::full(cam.width_px, cam.height_px);
+    render_region(scene, prep, queries, full, progress)
+}
+
+/// Renders the pixels of `region` (which must lie inside the image: [`Region::fits`]) into
+/// an image of the region's size. Every pixel is computed as in the whole image, so regions
+/// that tile the image assemble into it bit for bit.
+pub fn render_region<Q: RayQueries + ?Sized>(
+    scene: &Scene,
+    prep: &Prepared,
+    queries: &Q,
+    region: Region,
+    progress: &(dyn Fn(usize, usize) + Sync),
+) -> (Image, RenderStats) {
+    let cam = scene.camera;
+    let (w, h) = (region.width, region.height);
     let tiles_x = w.div_ceil(TILE);
     let tiles_y = h.div_ceil(TILE);
     let total = (tiles_x * tiles_y) as usize;
@@ -77,18 +125,18 @@ pub fn render<Q: RayQueries + ?Sized>(
     };
     let done = AtomicU64::new(0);
     let start = Instant::now();
+    // Tile `t` covers region columns `tx·TILE..` and rows `ty·TILE..`, clipped.
+    let tile_pixels = |t: u32| {
+        let (tx, ty) = (t % tiles_x, t / tiles_x);
+        let xs = region.x0 + tx * TILE..region.x0 + ((tx + 1) * TILE).min(w);
+        let ys = region.y0 + ty * TILE..region.y0 + ((ty + 1) * TILE).min(h);
+        (xs, ys)
+    };
     let tiles: Vec<(u32, Vec<[f32; 3]>)> = (0..total as u32)
         .into_par_iter()
         .map(|tile| {
-            let out = render_tile(
-                scene,
-                prep,
-                queries,
-                &cam,
-                tile % tiles_x,
-                tile / tiles_x,
-                &counters,
-            );
+            let (xs, ys) = tile_pixels(tile);
+            let out = render_tile(scene, prep, queries, &cam, xs, ys, &counters);
             let d = done.fetch_add(1, Ordering::Relaxed) as usize + 1;
             progress(d, total);
             (tile, out)
@@ -97,11 +145,11 @@ pub fn render<Q: RayQueries + ?Sized>(
     let seconds = start.elapsed().as_secs_f64();
     let mut rgb = vec![[0.0f32; 3]; (w as usize) * (h as usize)];
     for (tile, px) in tiles {
-        let (tx, ty) = (tile % tiles_x, tile / tiles_x);
+        let (xs, ys) = tile_pixels(tile);
         let mut k = 0;
-        for j in ty * TILE..((ty + 1) * TILE).min(h) {
-            for i in tx * TILE..((tx + 1) * TILE).min(w) {
-                rgb[(j * w + i) as usize] = px[k];
+        for j in ys {
+            for i in xs.clone() {
+                rgb[((j - region.y0) * w + (i - region.x0)) as usize] = px[k];
                 k += 1;
             }
         }
@@ -128,16 +176,16 @@ fn render_tile<Q: RayQueries + ?Sized>(
     prep: &Prepared,
     queries: &Q,
     cam: &Camera,
-    tx: u32,
-    ty: u32,
+    xs: std::ops::Range<u32>,
+    ys: std::ops::Range<u32>,
     counters: &Counters,
 ) -> Vec<[f32; 3]> {
-    let (w, h) = (cam.width_px, cam.height_px);
+    let w = cam.width_px;
     let frame = frame_params(scene, prep);
     let spp = frame.spp;
     let mut pixels = Vec::new();
-    for j in ty * TILE..((ty + 1) * TILE).min(h) {
-        for i in tx * TILE..((tx + 1) * TILE).min(w) {
+    for j in ys {
+        for i in xs.clone() {
             pixels.push((i, j));
         }
     }
