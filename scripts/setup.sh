@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs everything scratchwave needs on a Debian 12 machine, idempotently:
-#   * apt packages: Vulkan loader + lavapipe, libclang (bindgen), SPIRV-Tools, python3, g++
-#     (libFuzzer, built by the fuzz targets of scripts/fuzz.sh);
+#   * apt packages: Vulkan loader + lavapipe, libclang (bindgen), SPIRV-Tools, python3 with
+#     venv (the Python package's test environment, scripts/python.sh), g++ (libFuzzer, built
+#     by the fuzz targets of scripts/fuzz.sh; also the C ABI example);
 #   * Rust toolchains: the pinned stable (rust-toolchain.toml) and the rust-gpu nightly;
 #   * Embree 4.4 into .deps/embree (scripts/fetch-embree.sh), unless EMBREE_DIR is set.
 # Safe to run repeatedly; each step checks before it installs.
@@ -10,7 +11,7 @@ cd "$(dirname "$0")/.."
 
 STABLE=1.95.0
 NIGHTLY=nightly-2026-08-15
-APT_PACKAGES=(mesa-vulkan-drivers libvulkan1 libclang-dev spirv-tools python3 python3-pip g++)
+APT_PACKAGES=(mesa-vulkan-drivers libvulkan1 libclang-dev spirv-tools python3 python3-pip python3-venv g++)
 
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite: setup, formatting, lints, docs, every crate's tests (including the
 # SPIR-V build and the lavapipe conformance cases), the conformance run and a fuzz smoke
-# (scripts/fuzz.sh 20: every cargo-fuzz target for 20 s). Formatting and lints cover the
-# fuzz crate too (its own workspace).
+# (scripts/fuzz.sh 20: every cargo-fuzz target for 20 s), and the Python package's pytest
+# suite (scripts/python.sh). Formatting and lints cover the fuzz and Python crates too (each
+# its own workspace).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -12,17 +13,23 @@ step "cargo fmt --check"
 cargo fmt --all -- --check
 # fuzz/ is its own workspace, which `--all`/`--workspace` skip: check it by its manifest.
 cargo fmt --manifest-path fuzz/Cargo.toml -- --check
+cargo fmt --manifest-path python/Cargo.toml -- --check
 step "cargo clippy -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
 # The fuzz crate with the same stable clippy (no sanitizer flags: lints only), in the fuzz
 # build directory so its dependencies are checked once per cache.
 CARGO_TARGET_DIR=${FUZZ_TARGET_DIR:-$PWD/fuzz/target} \
   cargo clippy --manifest-path fuzz/Cargo.toml --all-targets --locked -- -D warnings
+# The Python extension crate, in the Python build directory (PyO3 finds python3 on PATH).
+CARGO_TARGET_DIR=${PYTHON_TARGET_DIR:-$HOME/.cache/scratchwave/python-target} \
+  cargo clippy --manifest-path python/Cargo.toml --all-targets -- -D warnings
 step "cargo doc"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --quiet
 step "cargo test"
 cargo test --workspace
 step "scratchwave run (conformance)"
 cargo run --release --quiet -p scratchwave-conformance --bin scratchwave -- run
+step "scripts/python.sh (Python package: build, install, pytest)"
+scripts/python.sh
 step "scripts/fuzz.sh 20 (fuzz smoke: 20 s per target)"
 scripts/fuzz.sh 20

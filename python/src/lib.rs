@@ -14,6 +14,9 @@ use scratchwave_host::TableBackend;
 use scratchwave_render::{Backend, Region, RenderError, scene_file};
 use std::path::{Path, PathBuf};
 
+/// A NumPy float32 vector handed back to Python.
+type Arr<'py> = Bound<'py, PyArray1<f32>>;
+
 create_exception!(
     _native,
     InputError,
@@ -144,7 +147,7 @@ impl NativeBsdf {
         footprint: Option<PyReadonlyArray1<'py, f32>>,
         lambda_nm: Option<PyReadonlyArray1<'py, f32>>,
         lambda_count: usize,
-    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+    ) -> PyResult<Arr<'py>> {
         let a = Arrays {
             wo,
             wi: Some(wi),
@@ -170,7 +173,7 @@ impl NativeBsdf {
         footprint: Option<PyReadonlyArray1<'py, f32>>,
         lambda_nm: Option<PyReadonlyArray1<'py, f32>>,
         lambda_count: usize,
-    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+    ) -> PyResult<Arr<'py>> {
         let a = Arrays {
             wo,
             wi: Some(wi),
@@ -187,7 +190,6 @@ impl NativeBsdf {
 
     /// Sampled directions, weights and pdfs, flat.
     #[pyo3(signature = (wo, u, x_um, footprint, lambda_nm, lambda_count))]
-    #[allow(clippy::type_complexity)]
     fn sample<'py>(
         &self,
         py: Python<'py>,
@@ -197,11 +199,7 @@ impl NativeBsdf {
         footprint: Option<PyReadonlyArray1<'py, f32>>,
         lambda_nm: Option<PyReadonlyArray1<'py, f32>>,
         lambda_count: usize,
-    ) -> PyResult<(
-        Bound<'py, PyArray1<f32>>,
-        Bound<'py, PyArray1<f32>>,
-        Bound<'py, PyArray1<f32>>,
-    )> {
+    ) -> PyResult<(Arr<'py>, Arr<'py>, Arr<'py>)> {
         let a = Arrays {
             wo,
             wi: None,
@@ -238,7 +236,7 @@ fn render<'py>(
     base_dir: PathBuf,
     backend: &str,
     region: Option<(u32, u32, u32, u32)>,
-) -> PyResult<(Bound<'py, PyArray1<f32>>, u32, u32, Bound<'py, PyDict>)> {
+) -> PyResult<(Arr<'py>, u32, u32, Bound<'py, PyDict>)> {
     let b = match backend {
         "cpu" => Backend::Cpu,
         "embree" => Backend::Embree,
@@ -248,7 +246,8 @@ fn render<'py>(
             )));
         }
     };
-    let v = scratchwave_spec::json::parse(text, name).map_err(|e| InputError::new_err(e.to_string()))?;
+    let v = scratchwave_spec::json::parse(text, name)
+        .map_err(|e| InputError::new_err(e.to_string()))?;
     let scene = scene_file::scene_from_value(&v, name, Path::new(&base_dir))
         .map_err(|e| InputError::new_err(e.to_string()))?;
     let r = match region {
@@ -281,7 +280,7 @@ fn render<'py>(
 /// The table spec's values (the CLI's `scratchwave table SPEC --backend cpu|simd`), flat.
 #[pyfunction]
 #[pyo3(signature = (text, backend="cpu"))]
-fn table<'py>(py: Python<'py>, text: &str, backend: &str) -> PyResult<Bound<'py, PyArray1<f32>>> {
+fn table<'py>(py: Python<'py>, text: &str, backend: &str) -> PyResult<Arr<'py>> {
     use scratchwave_cpu::{Backend as CpuBackend, Cpu};
     let b = match backend {
         "cpu" => Cpu(CpuBackend::Scalar),
@@ -292,8 +291,10 @@ fn table<'py>(py: Python<'py>, text: &str, backend: &str) -> PyResult<Bound<'py,
             )));
         }
     };
-    let v = scratchwave_spec::json::parse(text, "spec").map_err(|e| InputError::new_err(e.to_string()))?;
-    let batch = scratchwave_spec::spec::table_spec(&v).map_err(|e| InputError::new_err(e.to_string()))?;
+    let v = scratchwave_spec::json::parse(text, "spec")
+        .map_err(|e| InputError::new_err(e.to_string()))?;
+    let batch =
+        scratchwave_spec::spec::table_spec(&v).map_err(|e| InputError::new_err(e.to_string()))?;
     let values = py
         .detach(|| b.evaluate(&batch))
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
