@@ -16,7 +16,7 @@
 //! independent derivation.
 
 use scratchwave_kernel::material::{FresnelAngle, Material};
-use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
+use scratchwave_kernel::scratch::{DepthTerm, Profile, Scratch, ScratchSlice};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 use scratchwave_render::{Backend, render_scene, scene_file};
 use std::path::Path;
@@ -49,9 +49,11 @@ fn expected() -> Vec<f64> {
         Scratch::from_endpoints([-150.0, 140.0], [200.0, -150.0], 3.0, 0.25, Profile::Rect),
         Scratch::from_endpoints([20.0, -200.0], [-10.0, 200.0], 1.5, 0.4, Profile::Triangle),
     ];
+    // A scene's Werner material uses the exact depth phase by default (docs/render.md).
     let params = TableParams {
         model: Model::Werner as u32,
         sigma_um: 10.0,
+        depth_term: DepthTerm::Exact as u32,
         ..TableParams::default()
     };
     let (h, light, intensity) = (0.4f64, [0.4f64, 0.3, 3.0], 7.0f64);

@@ -7,6 +7,7 @@ use crate::json::Obj;
 use crate::spec;
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::render::shading::{BaseKind, SceneModel, ShadeMaterial};
+use scratchwave_kernel::scratch::DepthTerm;
 use scratchwave_kernel::scratch::Scratch;
 use scratchwave_kernel::table::{Model, TableParams};
 use serde_json::Value;
@@ -22,7 +23,9 @@ pub struct MaterialSpec {
 }
 
 /// `{"model": "werner" | "werner_blended" | "velinov" | "ghs", "sigma_um", "material",
-/// "options", "scratches", "base"}` at JSON path `path`. Scratch files are read relative to
+/// "options", "scratches", "base"}` at JSON path `path`. The depth term defaults to each
+/// paper's (exact for `werner` and `werner_blended`, small-angle for `velinov`);
+/// `options.depth_term` overrides it. Scratch files are read relative to
 /// `base_dir`; at most `budget` scratch segments are accepted.
 pub fn scene_material(
     v: &Value,
@@ -68,9 +71,18 @@ pub fn scene_material(
         Some(x) => spec::material(x, &m.path_of("material"))?,
         None => Material::constant(1.0),
     };
+    // Each paper's depth phase (`docs/bsdf.md`): Werner's models the exact `γi + γo`
+    // (Werner Eqs. 7, 20), Velinov the small-angle `γ = 2` (Velinov Eq. 4). The table spec's
+    // small-angle default for every model is a conformance convention, not inherited here.
+    let depth = if tm == Model::Velinov {
+        DepthTerm::SmallAngle
+    } else {
+        DepthTerm::Exact
+    };
     shade.table = TableParams {
         model: tm as u32,
         sigma_um: spec::sigma(&m)?,
+        depth_term: depth as u32,
         ..TableParams::default()
     };
     if let Some(o) = m.get("options") {

@@ -184,7 +184,7 @@ pub fn table_stream(v: &Value) -> Result<TableStream, SpecError> {
 }
 
 /// Model options `{"eta", "depth_term", "base"}` at `path` into `params` (`eta` and `base`
-/// only for model `velinov`).
+/// only for model `velinov`); an option left out keeps the value `params` has.
 pub fn options(
     v: &Value,
     path: &str,
@@ -203,11 +203,16 @@ pub fn options(
     };
     velinov_only("eta")?;
     velinov_only("base")?;
-    params.eta = u32::from(o.opt_choice("eta", &["finite", "infinite"])? == Some("infinite"));
-    params.depth_term =
-        u32::from(o.opt_choice("depth_term", &["small_angle", "exact"])? == Some("exact"));
-    params.base_gaussian =
-        u32::from(o.opt_choice("base", &["none", "gaussian"])? == Some("gaussian"));
+    // Each option overrides `params` only when given, so a caller's defaults stand.
+    if let Some(c) = o.opt_choice("eta", &["finite", "infinite"])? {
+        params.eta = u32::from(c == "infinite");
+    }
+    if let Some(c) = o.opt_choice("depth_term", &["small_angle", "exact"])? {
+        params.depth_term = u32::from(c == "exact");
+    }
+    if let Some(c) = o.opt_choice("base", &["none", "gaussian"])? {
+        params.base_gaussian = u32::from(c == "gaussian");
+    }
     Ok(())
 }
 
