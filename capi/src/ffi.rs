@@ -342,6 +342,30 @@ unsafe fn bsdf_ref<'a>(bsdf: *const SwBsdf) -> Result<&'a Bsdf, Error> {
         .ok_or_else(|| Error::arg("bsdf: null"))
 }
 
+/// Runs a batch call with one output array (`eval`, `pdf`) behind the guard.
+///
+/// # Safety
+/// As [`sw_eval`].
+unsafe fn one_output(
+    bsdf: *const SwBsdf,
+    queries: *const SwQueries,
+    out: *mut f32,
+    out_len: usize,
+    call: fn(&Bsdf, &Queries<'_>, &mut [f32]) -> Result<(), Error>,
+) -> Status {
+    guard(|| {
+        // SAFETY: forwarded contract.
+        let (b, q, o) = unsafe {
+            (
+                bsdf_ref(bsdf)?,
+                self::queries(queries)?,
+                slice_mut(out, out_len, "out")?,
+            )
+        };
+        call(b, &q, o)
+    })
+}
+
 /// The BRDF (1/sr, without the cosine) of each query: `out` receives `k` floats per query
 /// (`k` = wavelengths per query), `out_len` = `k·count`.
 ///
@@ -355,17 +379,8 @@ pub unsafe extern "C" fn sw_eval(
     out: *mut f32,
     out_len: usize,
 ) -> Status {
-    guard(|| {
-        // SAFETY: forwarded contract.
-        let (b, q, o) = unsafe {
-            (
-                bsdf_ref(bsdf)?,
-                self::queries(queries)?,
-                slice_mut(out, out_len, "out")?,
-            )
-        };
-        b.eval(&q, o)
-    })
+    // SAFETY: forwarded contract.
+    unsafe { one_output(bsdf, queries, out, out_len, Bsdf::eval) }
 }
 
 /// The solid-angle pdf of sampling each query's `wi` given its `wo`: one float per query.
@@ -379,17 +394,8 @@ pub unsafe extern "C" fn sw_pdf(
     out: *mut f32,
     out_len: usize,
 ) -> Status {
-    guard(|| {
-        // SAFETY: forwarded contract.
-        let (b, q, o) = unsafe {
-            (
-                bsdf_ref(bsdf)?,
-                self::queries(queries)?,
-                slice_mut(out, out_len, "out")?,
-            )
-        };
-        b.pdf(&q, o)
-    })
+    // SAFETY: forwarded contract.
+    unsafe { one_output(bsdf, queries, out, out_len, Bsdf::pdf) }
 }
 
 /// Draws `wi` given `wo` for each query from `u` (3 uniform floats per query). Writes

@@ -116,6 +116,28 @@ impl Arrays<'_> {
     }
 }
 
+impl NativeBsdf {
+    /// A batch call with one output array (`k` values per query when `per_wavelength`, else
+    /// one), the GIL released.
+    fn one_output<'py>(
+        &self,
+        py: Python<'py>,
+        a: &Arrays<'py>,
+        per_wavelength: bool,
+        call: fn(&Bsdf, &Queries<'_>, &mut [f32]) -> Result<(), Error>,
+    ) -> PyResult<Arr<'py>> {
+        let q = a.queries()?;
+        let per = if per_wavelength {
+            q.wavelengths_per_query()
+        } else {
+            1
+        };
+        let mut out = vec![0.0f32; q.len() * per];
+        py.detach(|| call(&self.0, &q, &mut out)).map_err(py_err)?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+}
+
 #[pymethods]
 impl NativeBsdf {
     /// From the material JSON text of a scene file.
@@ -156,10 +178,7 @@ impl NativeBsdf {
             lambda_nm,
             lambda_count,
         };
-        let q = a.queries()?;
-        let mut out = vec![0.0f32; q.len() * q.wavelengths_per_query()];
-        py.detach(|| self.0.eval(&q, &mut out)).map_err(py_err)?;
-        Ok(PyArray1::from_vec(py, out))
+        self.one_output(py, &a, true, Bsdf::eval)
     }
 
     /// Pdf values, one per query.
@@ -182,10 +201,7 @@ impl NativeBsdf {
             lambda_nm,
             lambda_count,
         };
-        let q = a.queries()?;
-        let mut out = vec![0.0f32; q.len()];
-        py.detach(|| self.0.pdf(&q, &mut out)).map_err(py_err)?;
-        Ok(PyArray1::from_vec(py, out))
+        self.one_output(py, &a, false, Bsdf::pdf)
     }
 
     /// Sampled directions, weights and pdfs, flat.
