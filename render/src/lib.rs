@@ -14,11 +14,15 @@
 //! ```
 
 pub mod output;
+pub mod layered_exr;
+pub mod light_sampling;
 pub mod per_pixel;
 pub mod prepare;
+pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod scene_file;
+pub mod stat_compare;
 
 pub use render::{Image, RenderStats};
 pub use scene::Scene;
