@@ -19,7 +19,7 @@ const USAGE: &str = "usage:
   scratchwave light SPEC.json [--backend cpu|simd|spirv]
   scratchwave render SCENE.json [--backend cpu|embree|spirv] [--out IMAGE.exr] [--png PREVIEW.png] [--exposure EV]
   scratchwave render SCENE.json --integrator reference [--backend cpu|embree] [--out REF.exr] [--png PREVIEW.png]
-                    [--rel-stderr 0.01] [--min-spp 64] [--max-spp 65536] [--seed 1] [--spectral continuous|scene] [--pixel box|scene]
+                    [--rel-stderr 0.01] [--min-spp 256] [--max-spp 65536] [--seed 1] [--spectral continuous|scene] [--pixel box|scene]
                                                   Monte Carlo reference: mean, stderr.R/G/B, spp (docs/reference.md)
   scratchwave compare ANALYTIC.exr REFERENCE.exr [--out-dir DIR]
   scratchwave reference-check SCENE.json [--reference-scene OTHER.json] [--out-dir DIR] [reference options]

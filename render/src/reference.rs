@@ -109,7 +109,7 @@ impl Default for ReferenceOptions {
         ReferenceOptions {
             seed: 1,
             rel_stderr: 0.01,
-            min_spp: 64,
+            min_spp: 256,
             max_spp: 65536,
             spectral: SpectralSampling::Continuous,
             pixel: PixelSampling::Box,
