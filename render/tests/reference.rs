@@ -224,7 +224,15 @@ fn analytic_velinov_sphere_light_within_noise() {
     };
     let r = reference(&s, &o);
     let c = compare(&a, &r.mean, &r.stderr, r.stats.floor);
-    eprintln!("DEBUG {:?} within {} beyond {} err {:?} zq {:?}", r.stats, c.within_3se, c.beyond, c.beyond_rel_err, c.z_quantiles);
+    // The sphere light's scratch highlights are what the samples resolve (elsewhere the
+    // point light and the mirror base are deterministic): enough of them, and in the noise.
+    let noisy: Vec<usize> = (0..a.rgb.len()).filter(|&k| r.stderr.rgb[k][1] > 0.0).collect();
+    let ok = noisy
+        .iter()
+        .filter(|&&k| c.z.rgb[k].iter().all(|z| z.abs() <= 3.0))
+        .count();
+    assert!(noisy.len() >= 40, "{} pixels with sampled light", noisy.len());
+    assert!(ok as f64 >= 0.95 * noisy.len() as f64, "{ok} of {} within 3 SE", noisy.len());
     assert!(c.within_3se >= 0.99, "within 3 SE: {}", c.within_3se);
     let brighter = Image {
         rgb: a.rgb.iter().map(|p| p.map(|v| v * 1.03)).collect(),
