@@ -267,7 +267,11 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
         }
         "reference-check" => {
             let mut allowed = vec!["backend", "out-dir", "reference-scene"];
-            allowed.extend(reference_cmd::REFERENCE_FLAGS.iter().filter(|f| **f != "integrator"));
+            allowed.extend(
+                reference_cmd::REFERENCE_FLAGS
+                    .iter()
+                    .filter(|f| **f != "integrator"),
+            );
             let (pos, flags) = parse_flags(rest, &allowed)?;
             let file = one_file(&pos, "reference-check")?;
             reference_cmd::reference_check_command(file, &flags)?;

@@ -10,8 +10,8 @@
 
 use scratchwave_render::layered_exr::{Channels, ExrLayer, write_layers};
 use scratchwave_render::reference::{
-    FLOOR_FRACTION, PixelSampling, ReferenceImage, ReferenceOptions, SpectralSampling, quantile_sorted,
-    render_reference,
+    FLOOR_FRACTION, PixelSampling, ReferenceImage, ReferenceOptions, SpectralSampling,
+    quantile_sorted, render_reference,
 };
 use scratchwave_render::stat_compare::{Comparison, Z_QUANTILES, compare, write_heat_map};
 use scratchwave_render::{Backend, Image, RenderError, render_scene, scene_file};
@@ -43,13 +43,23 @@ fn bad_flag(name: &str, msg: impl Into<String>) -> SpecError {
     SpecError::field(format!("--{name}"), msg)
 }
 
-fn int_flag(flags: &[(&str, &str)], name: &str, lo: u64, hi: u64) -> Result<Option<u64>, SpecError> {
+fn int_flag(
+    flags: &[(&str, &str)],
+    name: &str,
+    lo: u64,
+    hi: u64,
+) -> Result<Option<u64>, SpecError> {
     flag(flags, name)
         .map(|v| {
             v.parse::<u64>()
                 .ok()
                 .filter(|x| (lo..=hi).contains(x))
-                .ok_or_else(|| bad_flag(name, format!("expected an integer in {lo}..={hi}, got {v:?}")))
+                .ok_or_else(|| {
+                    bad_flag(
+                        name,
+                        format!("expected an integer in {lo}..={hi}, got {v:?}"),
+                    )
+                })
         })
         .transpose()
 }
@@ -62,7 +72,12 @@ pub fn reference_options(flags: &[(&str, &str)]) -> Result<ReferenceOptions, Spe
             .parse::<f64>()
             .ok()
             .filter(|x| x.is_finite() && *x > 0.0 && *x < 1.0)
-            .ok_or_else(|| bad_flag("rel-stderr", format!("expected a number in (0, 1), got {v:?}")))?;
+            .ok_or_else(|| {
+                bad_flag(
+                    "rel-stderr",
+                    format!("expected a number in (0, 1), got {v:?}"),
+                )
+            })?;
     }
     if let Some(n) = int_flag(flags, "max-spp", 8, 1 << 24)? {
         o.max_spp = n as u32;
@@ -88,7 +103,10 @@ pub fn reference_options(flags: &[(&str, &str)]) -> Result<ReferenceOptions, Spe
         None | Some("box") => PixelSampling::Box,
         Some("scene") => PixelSampling::SceneSamples,
         Some(v) => {
-            return Err(bad_flag("pixel", format!("expected box or scene, got {v:?}")));
+            return Err(bad_flag(
+                "pixel",
+                format!("expected box or scene, got {v:?}"),
+            ));
         }
     };
     Ok(o)
@@ -155,7 +173,10 @@ pub fn summary(r: &ReferenceImage) -> String {
         n,
         st.shadow_rays,
         if st.area_fallback_samples > 0 {
-            format!(", {} triangle samples by area (fallback)", st.area_fallback_samples)
+            format!(
+                ", {} triangle samples by area (fallback)",
+                st.area_fallback_samples
+            )
         } else {
             String::new()
         }
@@ -163,7 +184,12 @@ pub fn summary(r: &ReferenceImage) -> String {
 }
 
 /// Writes a reference image: mean in `R, G, B`, `stderr.R/G/B`, `spp`.
-pub fn write_reference(path: &Path, scene_name: &str, r: &ReferenceImage, opts: &ReferenceOptions) -> Result<(), RenderError> {
+pub fn write_reference(
+    path: &Path,
+    scene_name: &str,
+    r: &ReferenceImage,
+    opts: &ReferenceOptions,
+) -> Result<(), RenderError> {
     let spp: Vec<f32> = r.spp.iter().map(|&s| s as f32).collect();
     let st = &r.stats;
     write_layers(
@@ -205,7 +231,9 @@ pub fn render_reference_command(file: &str, flags: &[(&str, &str)]) -> Result<()
                 .parse::<f32>()
                 .ok()
                 .filter(|x| x.is_finite())
-                .ok_or_else(|| bad_flag("exposure", format!("expected a finite number, got {v:?}")))?,
+                .ok_or_else(|| {
+                    bad_flag("exposure", format!("expected a finite number, got {v:?}"))
+                })?,
             None => 0.0,
         };
         scratchwave_render::output::write_png(Path::new(p), &r.mean, exposure)
@@ -264,7 +292,10 @@ fn write_comparison(dir: &Path, stem: &str, c: &Comparison) -> Result<Vec<PathBu
         &exr,
         c.z.width,
         c.z.height,
-        &[ExrLayer::Rgb("z", &c.z.rgb), ExrLayer::Rgb("rel_err", &c.rel_err.rgb)],
+        &[
+            ExrLayer::Rgb("z", &c.z.rgb),
+            ExrLayer::Rgb("rel_err", &c.rel_err.rgb),
+        ],
         &[("floor", format!("{:e}", c.floor))],
     )?;
     let png = dir.join(format!("{stem}-zscore.png"));
@@ -306,7 +337,11 @@ fn floor_of(mean: &Image) -> f64 {
 
 /// `scratchwave compare ANALYTIC.exr REFERENCE.exr [--out-dir DIR]`: prints the report,
 /// writes the z-score EXR and heat map when `--out-dir` is given.
-pub fn compare_command(analytic: &str, reference: &str, flags: &[(&str, &str)]) -> Result<(), SpecError> {
+pub fn compare_command(
+    analytic: &str,
+    reference: &str,
+    flags: &[(&str, &str)],
+) -> Result<(), SpecError> {
     let a = Channels::read(Path::new(analytic))?.rgb("")?;
     let rc = Channels::read(Path::new(reference))?;
     let (mean, se) = (rc.rgb("")?, rc.rgb("stderr")?);
@@ -316,7 +351,10 @@ pub fn compare_command(analytic: &str, reference: &str, flags: &[(&str, &str)]) 
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "analytic".into());
-    print!("{}", report(&stem, &c, &format!("{analytic} against {reference}")));
+    print!(
+        "{}",
+        report(&stem, &c, &format!("{analytic} against {reference}"))
+    );
     if let Some(dir) = flag(flags, "out-dir") {
         let dir = Path::new(dir);
         make_dir(dir)?;
@@ -355,7 +393,8 @@ pub fn reference_check_command(file: &str, flags: &[(&str, &str)]) -> Result<(),
     let analytic_s = t.elapsed().as_secs_f64();
     eprintln!("analytic: {analytic_s:.3} s");
     let progress = progress_printer();
-    let r = render_reference(&ref_scene, b, &opts, &progress).map_err(|e| render_error(ref_file, e))?;
+    let r =
+        render_reference(&ref_scene, b, &opts, &progress).map_err(|e| render_error(ref_file, e))?;
     eprintln!();
     eprintln!("{}", summary(&r));
     let c = compare(&analytic.image, &r.mean, &r.stderr, r.stats.floor);
@@ -378,8 +417,12 @@ pub fn reference_check_command(file: &str, flags: &[(&str, &str)]) -> Result<(),
     print!("{}", report(&scene.name, &c, &timing));
     let out_err = |e: RenderError| render_error(file, e);
     let a_path = dir.join(format!("{}-analytic.exr", scene.name));
-    scratchwave_render::output::write_exr(&a_path, &analytic.image, &[("scene", scene.name.clone())])
-        .map_err(out_err)?;
+    scratchwave_render::output::write_exr(
+        &a_path,
+        &analytic.image,
+        &[("scene", scene.name.clone())],
+    )
+    .map_err(out_err)?;
     let r_path = dir.join(format!("{}-reference.exr", scene.name));
     write_reference(&r_path, &ref_scene.name, &r, &opts).map_err(out_err)?;
     let mut written = vec![a_path, r_path];

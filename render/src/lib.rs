@@ -13,9 +13,9 @@
 //! # Ok::<(), scratchwave_render::RenderError>(())
 //! ```
 
-pub mod output;
 pub mod layered_exr;
 pub mod light_sampling;
+pub mod output;
 pub mod per_pixel;
 pub mod prepare;
 pub mod reference;

@@ -52,11 +52,12 @@ fn node(dir: DVec3, dist: f64, weight: f64) -> Option<AreaNode> {
 pub fn sample_light(light: &SceneLight, p: glam::Vec3, u: [f64; 2]) -> Option<LightSample> {
     let p = p.as_dvec3();
     match SceneLightKind::from_u32(light.kind) {
-        SceneLightKind::Sphere => sample_sphere(v3(light.p0), f64::from(light.p0[3]), p, u)
-            .map(|node| LightSample {
+        SceneLightKind::Sphere => {
+            sample_sphere(v3(light.p0), f64::from(light.p0[3]), p, u).map(|node| LightSample {
                 node,
                 area_fallback: false,
-            }),
+            })
+        }
         SceneLightKind::Triangle => {
             let (a, b, c) = (v3(light.p0), v3(light.p1), v3(light.p2));
             match sample_spherical_triangle(a, b, c, p, u) {

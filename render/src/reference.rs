@@ -3,7 +3,7 @@
 //! standard error per pixel.
 //!
 //! Per camera sample: a sub-pixel position (stratified, 2×2 jittered strata per pass), the
-//! closest hit, the **point** model ([`bsdf::eval`](scratchwave_kernel::bsdf::eval) through
+//! closest hit, the **point** model ([`bsdf::eval`](scratchwave_kernel::bsdf::eval()) through
 //! the kernel's shading functions, no footprint average) and, per light:
 //! * point and directional lights: evaluated directly (one shadow ray),
 //! * sphere and polygon lights: one direction sampled by solid angle
@@ -46,8 +46,8 @@ use scratchwave_kernel::render::area::{AreaNode, SceneLight, SceneLightKind};
 use scratchwave_kernel::render::pixel::sample_offset;
 use scratchwave_kernel::render::radiance::{FrameParams, hit_point};
 use scratchwave_kernel::render::shading::{
-    self, BaseKind, ShadeMaterial, area_node_radiance_spectrum, base_weight,
-    delta_light_spectrum, is_delta, shadow_ray,
+    self, BaseKind, ShadeMaterial, area_node_radiance_spectrum, base_weight, delta_light_spectrum,
+    is_delta, shadow_ray,
 };
 use scratchwave_kernel::render::spectrum::{
     self, SPECTRAL_MIN_NM, SPECTRAL_RANGE_NM, SpectrumMode,
@@ -219,10 +219,10 @@ impl PixelAcc {
     fn add(&mut self, x: [f64; 3]) {
         self.passes += 1;
         let n = f64::from(self.passes);
-        for c in 0..3 {
-            let d = x[c] - self.mean[c];
-            self.mean[c] += d / n;
-            self.m2[c] += d * (x[c] - self.mean[c]);
+        for ((m, m2), x) in self.mean.iter_mut().zip(&mut self.m2).zip(x) {
+            let d = x - *m;
+            *m += d / n;
+            *m2 += d * (x - *m);
         }
     }
 
@@ -234,6 +234,9 @@ impl PixelAcc {
         self.m2.map(|m2| (m2.max(0.0) / (n - 1.0) / n).sqrt())
     }
 }
+
+/// The pixels of one tile: `(i, j)` and their accumulators.
+type Tile = Vec<(u32, u32, PixelAcc)>;
 
 struct Ctx<'a, Q: ?Sized> {
     scene: &'a Scene,
@@ -271,7 +274,7 @@ fn reference_with<Q: RayQueries + ?Sized>(
     };
     let tiles_x = w.div_ceil(TILE);
     let tiles_y = h.div_ceil(TILE);
-    let mut tiles: Vec<(u32, Vec<(u32, u32, PixelAcc)>)> = (0..tiles_x * tiles_y)
+    let mut tiles: Vec<Tile> = (0..tiles_x * tiles_y)
         .map(|t| {
             let (tx, ty) = (t % tiles_x, t / tiles_x);
             let mut px = Vec::new();
@@ -280,7 +283,7 @@ fn reference_with<Q: RayQueries + ?Sized>(
                     px.push((i, j, PixelAcc::default()));
                 }
             }
-            (t, px)
+            px
         })
         .collect();
     let total = (w as usize) * (h as usize);
@@ -288,7 +291,7 @@ fn reference_with<Q: RayQueries + ?Sized>(
     let max_passes = opts.max_spp.div_ceil(PASS_SAMPLES).max(min_passes);
     // Phase 1: min_spp everywhere.
     let done = AtomicU64::new(0);
-    tiles.par_iter_mut().for_each(|(_, px)| {
+    tiles.par_iter_mut().for_each(|px| {
         for (i, j, acc) in px.iter_mut() {
             while acc.passes < min_passes {
                 let v = ctx.pass(*i, *j, acc.passes);
@@ -301,14 +304,17 @@ fn reference_with<Q: RayQueries + ?Sized>(
     // The floor of the relative error: a fraction of the image's peak.
     let mut peaks: Vec<f64> = tiles
         .iter()
-        .flat_map(|(_, px)| px.iter().map(|p| p.2.mean.iter().fold(0.0f64, |a, &b| a.max(b.abs()))))
+        .flat_map(|px| {
+            px.iter()
+                .map(|p| p.2.mean.iter().fold(0.0f64, |a, &b| a.max(b.abs())))
+        })
         .collect();
     peaks.sort_by(f64::total_cmp);
     let peak = quantile_sorted(&peaks, 0.999);
     let floor = FLOOR_FRACTION * peak;
     // Phase 2: each pixel until its relative standard error reaches the target.
     let done = AtomicU64::new(0);
-    tiles.par_iter_mut().for_each(|(_, px)| {
+    tiles.par_iter_mut().for_each(|px| {
         for (i, j, acc) in px.iter_mut() {
             loop {
                 if rel_of(acc.mean, acc.stderr(), floor) <= opts.rel_stderr {
@@ -332,7 +338,7 @@ fn reference_with<Q: RayQueries + ?Sized>(
     let mut spp = vec![0u32; n];
     let mut samples = 0u64;
     let mut converged = 0u64;
-    for (_, px) in &tiles {
+    for px in &tiles {
         for (i, j, acc) in px {
             let k = (j * w + i) as usize;
             mean[k] = acc.mean.map(|v| v as f32);
@@ -417,7 +423,7 @@ impl<Q: RayQueries + ?Sized> Ctx<'_, Q> {
         let cam = &self.scene.camera;
         let pixel = u64::from(j) * u64::from(cam.width_px) + u64::from(i);
         let mut rng = SplitMix64::new(mix(
-            mix(self.opts.seed ^ mix(pixel.wrapping_add(0x5151))) ^ u64::from(pass),
+            mix(self.opts.seed ^ mix(pixel.wrapping_add(0x5151))) ^ u64::from(pass)
         ));
         let perm_lambda = permutation(&mut rng);
         let perm_light: Vec<[u32; PASS_SAMPLES as usize]> = (0..self.prep.lights.len())
@@ -476,7 +482,10 @@ impl<Q: RayQueries + ?Sized> Ctx<'_, Q> {
                     && sp.to_local(dir).z > 0.0
                 {
                     shadow_rays += 1;
-                    if !self.queries.occluded(&shadow_ray(sp.position, hp.ng, dir, dist)) {
+                    if !self
+                        .queries
+                        .occluded(&shadow_ray(sp.position, hp.ng, dir, dist))
+                    {
                         t = LightTerm::Delta;
                     }
                 }
@@ -506,8 +515,8 @@ impl<Q: RayQueries + ?Sized> Ctx<'_, Q> {
         self.shadow_rays.fetch_add(shadow_rays, Ordering::Relaxed);
         let mode = self.frame.mode();
         let mut acc = [0.0f32; 3];
-        let continuous = mode == SpectrumMode::Spectral
-            && self.opts.spectral == SpectralSampling::Continuous;
+        let continuous =
+            mode == SpectrumMode::Spectral && self.opts.spectral == SpectralSampling::Continuous;
         if continuous {
             let wl = Wavelengths::sample_uniform(
                 u_lambda,
@@ -586,7 +595,10 @@ impl<Q: RayQueries + ?Sized> Ctx<'_, Q> {
         let Some(dist) = light_distance(light, sp.position, dir) else {
             return (0.0, 0);
         };
-        if self.queries.occluded(&shadow_ray(sp.position, hp.ng, dir, dist)) {
+        if self
+            .queries
+            .occluded(&shadow_ray(sp.position, hp.ng, dir, dist))
+        {
             return (0.0, 1);
         }
         let w = base_weight(m, sp.x_um, &lk.scratches);

@@ -8,10 +8,10 @@
 //! [`SE_ROUNDING`] of `max(|mean|, floor)`, the rounding of an `f32` mean, so a pixel that
 //! both compute identically has `z = 0` and any real difference is counted.
 
+use crate::RenderError;
 use crate::output;
 use crate::reference::quantile_sorted;
 use crate::render::Image;
-use crate::RenderError;
 use std::path::Path;
 
 /// The smallest standard error, relative to `max(|mean|, floor)`.
@@ -62,7 +62,11 @@ pub fn compare(image: &Image, mean: &Image, stderr: &Image, floor: f64) -> Compa
             let scale = m.abs().max(floor);
             let se = f64::from(stderr.rgb[k][c]).max(SE_ROUNDING * scale);
             let zc = if se > 0.0 { (a - m) / se } else { 0.0 };
-            let rc = if scale > 0.0 { (a - m).abs() / scale } else { 0.0 };
+            let rc = if scale > 0.0 {
+                (a - m).abs() / scale
+            } else {
+                0.0
+            };
             z[k][c] = zc as f32;
             rel[k][c] = rc as f32;
             zs[c].push(zc);

@@ -5,13 +5,13 @@
 
 use glam::DVec3;
 use scratchwave_host::rng::SplitMix64;
+use scratchwave_kernel::render::area::{SceneLight, SceneLightKind};
 use scratchwave_render::light_sampling::sample_light;
 use scratchwave_render::reference::{
     PixelSampling, ReferenceImage, ReferenceOptions, SpectralSampling, render_reference,
 };
 use scratchwave_render::stat_compare::compare;
 use scratchwave_render::{Backend, Image, Scene, render_scene, scene_file};
-use scratchwave_kernel::render::area::{SceneLight, SceneLightKind};
 use serde_json::json;
 use std::path::Path;
 
@@ -74,20 +74,28 @@ fn cosine_integral(light: &SceneLight, p: glam::Vec3, n: usize, seed: u64) -> (f
     let mut rng = SplitMix64::new(seed);
     let (mut s, mut s2) = (0.0f64, 0.0f64);
     for _ in 0..n {
-        let v = sample_light(light, p, [rng.next_f64(), rng.next_f64()])
-            .map_or(0.0, |x| f64::from(x.node.weight) * f64::from(x.node.dir.z.max(0.0)));
+        let v = sample_light(light, p, [rng.next_f64(), rng.next_f64()]).map_or(0.0, |x| {
+            f64::from(x.node.weight) * f64::from(x.node.dir.z.max(0.0))
+        });
         s += v;
         s2 += v * v;
     }
     let m = s / n as f64;
-    (m, ((s2 / n as f64 - m * m).max(0.0) / (n as f64 - 1.0)).sqrt())
+    (
+        m,
+        ((s2 / n as f64 - m * m).max(0.0) / (n as f64 - 1.0)).sqrt(),
+    )
 }
 
 /// Uniform cone sampling against the form factor of a sphere above the horizon:
 /// `∫ cos θ dω = π sin²α cos θc`.
 #[test]
 fn sphere_sampling_matches_form_factor() {
-    for (c, r) in [([0.5f32, 0.3, 2.0], 0.4f32), ([2.0, 0.0, 0.5], 0.3), ([0.0, 0.1, 9.0], 0.01)] {
+    for (c, r) in [
+        ([0.5f32, 0.3, 2.0], 0.4f32),
+        ([2.0, 0.0, 0.5], 0.3),
+        ([0.0, 0.1, 9.0], 0.01),
+    ] {
         let light = SceneLight {
             kind: SceneLightKind::Sphere as u32,
             p0: [c[0], c[1], c[2], r],
@@ -99,7 +107,10 @@ fn sphere_sampling_matches_form_factor() {
         let exact = std::f64::consts::PI * (f64::from(r) / d).powi(2) * (cd.z / d);
         let (m, se) = cosine_integral(&light, glam::Vec3::ZERO, 20000, 7);
         assert!(se < 0.01 * exact, "{c:?}: se {se} of {exact}");
-        assert!((m - exact).abs() <= 4.0 * se, "{c:?}: {m} vs {exact} ± {se}");
+        assert!(
+            (m - exact).abs() <= 4.0 * se,
+            "{c:?}: {m} vs {exact} ± {se}"
+        );
     }
 }
 
@@ -134,7 +145,10 @@ fn triangle_sampling_matches_form_factor() {
         let exact = 0.5 * sum.abs();
         let (m, se) = cosine_integral(&light, glam::Vec3::ZERO, 20000, 11);
         assert!(se < 0.01 * exact, "{t:?}: se {se} of {exact}");
-        assert!((m - exact).abs() <= 4.0 * se, "{t:?}: {m} vs {exact} ± {se}");
+        assert!(
+            (m - exact).abs() <= 4.0 * se,
+            "{t:?}: {m} vs {exact} ± {se}"
+        );
     }
 }
 
@@ -226,18 +240,32 @@ fn analytic_velinov_sphere_light_within_noise() {
     let c = compare(&a, &r.mean, &r.stderr, r.stats.floor);
     // The sphere light's scratch highlights are what the samples resolve (elsewhere the
     // point light and the mirror base are deterministic): enough of them, and in the noise.
-    let noisy: Vec<usize> = (0..a.rgb.len()).filter(|&k| r.stderr.rgb[k][1] > 0.0).collect();
+    let noisy: Vec<usize> = (0..a.rgb.len())
+        .filter(|&k| r.stderr.rgb[k][1] > 0.0)
+        .collect();
     let ok = noisy
         .iter()
         .filter(|&&k| c.z.rgb[k].iter().all(|z| z.abs() <= 3.0))
         .count();
-    assert!(noisy.len() >= 40, "{} pixels with sampled light", noisy.len());
-    assert!(ok as f64 >= 0.95 * noisy.len() as f64, "{ok} of {} within 3 SE", noisy.len());
+    assert!(
+        noisy.len() >= 40,
+        "{} pixels with sampled light",
+        noisy.len()
+    );
+    assert!(
+        ok as f64 >= 0.95 * noisy.len() as f64,
+        "{ok} of {} within 3 SE",
+        noisy.len()
+    );
     assert!(c.within_3se >= 0.99, "within 3 SE: {}", c.within_3se);
     let brighter = Image {
         rgb: a.rgb.iter().map(|p| p.map(|v| v * 1.03)).collect(),
         ..a.clone()
     };
     let c = compare(&brighter, &r.mean, &r.stderr, r.stats.floor);
-    assert!(c.within_3se < 0.9, "perturbed within 3 SE: {}", c.within_3se);
+    assert!(
+        c.within_3se < 0.9,
+        "perturbed within 3 SE: {}",
+        c.within_3se
+    );
 }
