@@ -4,7 +4,7 @@
 //! file or field; nothing is written to stdout).
 
 use scratchwave_conformance::format::g9;
-use scratchwave_conformance::{backends, run};
+use scratchwave_conformance::{backends, reference_cmd, run};
 use scratchwave_host::{BackendError, CaseBatch, TableBackend, TableBatch};
 use scratchwave_spec::{SpecError, json, spec};
 use std::path::{Path, PathBuf};
@@ -17,7 +17,13 @@ const USAGE: &str = "usage:
   scratchwave table SPEC.json [--backend cpu|simd|spirv|all]
   scratchwave footprint SPEC.json [--backend cpu|simd|spirv]
   scratchwave light SPEC.json [--backend cpu|simd|spirv]
-  scratchwave render SCENE.json [--backend cpu|embree|spirv] [--out IMAGE.exr] [--png PREVIEW.png] [--exposure EV]";
+  scratchwave render SCENE.json [--backend cpu|embree|spirv] [--out IMAGE.exr] [--png PREVIEW.png] [--exposure EV]
+  scratchwave render SCENE.json --integrator reference [--backend cpu|embree] [--out REF.exr] [--png PREVIEW.png]
+                    [--rel-stderr 0.01] [--min-spp 256] [--max-spp 65536] [--seed 1] [--spectral continuous|scene] [--pixel box|scene]
+                                                  Monte Carlo reference: mean, stderr.R/G/B, spp (docs/reference.md)
+  scratchwave compare ANALYTIC.exr REFERENCE.exr [--out-dir DIR]
+  scratchwave reference-check SCENE.json [--reference-scene OTHER.json] [--out-dir DIR] [reference options]
+                                                  analytic render vs reference: z-score report, EXR, PNG heat map";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -222,12 +228,54 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             Ok(ExitCode::SUCCESS)
         }
         "render" => {
-            let (pos, flags) = parse_flags(rest, &["backend", "out", "png", "exposure"])?;
+            let mut allowed = vec!["backend", "out", "png", "exposure"];
+            allowed.extend(reference_cmd::REFERENCE_FLAGS);
+            let (pos, flags) = parse_flags(rest, &allowed)?;
             let file = match pos.as_slice() {
                 [f] => *f,
                 _ => return Err(Failure::Usage("render takes exactly one SCENE.json".into())),
             };
-            render_command(file, &flags)
+            match flag(&flags, "integrator") {
+                Some("reference") => {
+                    reference_cmd::render_reference_command(file, &flags)?;
+                    Ok(ExitCode::SUCCESS)
+                }
+                None | Some("analytic") => {
+                    if let Some((f, _)) = flags.iter().find(|(f, _)| {
+                        reference_cmd::REFERENCE_FLAGS.contains(f) && *f != "integrator"
+                    }) {
+                        return Err(Failure::Usage(format!(
+                            "--{f} needs --integrator reference"
+                        )));
+                    }
+                    render_command(file, &flags)
+                }
+                Some(other) => Err(Failure::Usage(format!(
+                    "unknown --integrator {other:?} (expected analytic or reference)"
+                ))),
+            }
+        }
+        "compare" => {
+            let (pos, flags) = parse_flags(rest, &["out-dir"])?;
+            let [a, r] = pos.as_slice() else {
+                return Err(Failure::Usage(
+                    "compare takes ANALYTIC.exr REFERENCE.exr".into(),
+                ));
+            };
+            reference_cmd::compare_command(a, r, &flags)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        "reference-check" => {
+            let mut allowed = vec!["backend", "out-dir", "reference-scene"];
+            allowed.extend(
+                reference_cmd::REFERENCE_FLAGS
+                    .iter()
+                    .filter(|f| **f != "integrator"),
+            );
+            let (pos, flags) = parse_flags(rest, &allowed)?;
+            let file = one_file(&pos, "reference-check")?;
+            reference_cmd::reference_check_command(file, &flags)?;
+            Ok(ExitCode::SUCCESS)
         }
         "run" => {
             let (pos, flags) = parse_flags(rest, &["cases", "scenes", "out", "spirv-scenes"])?;

@@ -13,12 +13,16 @@
 //! # Ok::<(), scratchwave_render::RenderError>(())
 //! ```
 
+pub mod layered_exr;
+pub mod light_sampling;
 pub mod output;
 pub mod per_pixel;
 pub mod prepare;
+pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod scene_file;
+pub mod stat_compare;
 
 pub use render::{Image, Region, RenderStats};
 pub use scene::Scene;

@@ -23,7 +23,7 @@ fn fail(path: &Path, msg: impl std::fmt::Display) -> RenderError {
 }
 
 /// Writes `tmp` with `write`, then renames it to `path` (removing `tmp` on failure).
-fn atomically(
+pub(crate) fn atomically(
     path: &Path,
     write: impl FnOnce(&Path) -> Result<(), String>,
 ) -> Result<(), RenderError> {
