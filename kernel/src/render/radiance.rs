@@ -431,6 +431,13 @@ fn area_light<S: ScratchSet, O: Occlusion>(
     }
     let closed = shading::closed_form_area(m);
     let scale = w_vis / w_all;
+    // A smooth base of a quadrature model: its mirror image of the light, scaled by the
+    // visible fraction like the closed form (the same at every wavelength).
+    let mirror = if closed {
+        0.0
+    } else {
+        shading::area_mirror_radiance(m, sp, wo, light, lk, fp) * scale
+    };
     let n_lambda = frame.wavelength_count();
     let mode = frame.mode();
     // Wavelengths in groups of MAX_LAMBDAS: one scratch walk per group (and per node).
@@ -470,7 +477,7 @@ fn area_light<S: ScratchSet, O: Occlusion>(
         let mut j = 0;
         while j < count && j < MAX_LAMBDAS {
             let lam = wl.nm[j];
-            let mut l = closed_l[j] * scale;
+            let mut l = closed_l[j] * scale + mirror;
             if nodes {
                 let mut slot = 0;
                 while slot < area::MAX_NODES as usize {

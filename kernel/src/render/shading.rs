@@ -321,25 +321,60 @@ pub fn velinov_area_light<S: ScratchSet>(
         fp,
         set,
     );
-    let mirror_base = BaseKind::from_u32(m.base) == BaseKind::Smooth || m.table.base_gaussian == 1;
-    let mut mirror = 0.0;
-    if mirror_base {
-        let wm = Vec3::new(-wo.x, -wo.y, wo.z);
-        if wm.z > 0.0 && region.contains(wm) {
-            let weight = if fp.a1 > 0.0 && fp.a2 > 0.0 {
-                math::max(1.0 - footprint_density(m.table.sigma_um, fp, set), 0.0)
-            } else {
-                base_weight(m, sp.x_um, set)
-            };
-            mirror = weight * m.material.reflectance(wm, wo);
-        }
-    }
+    let mirror = mirror_in_region(m, sp, wo, &region, fp, set);
     let mut k = 0;
     while k < count && k < MAX_LAMBDAS {
         l[k] = (l[k] + mirror) * light.emission;
         k += 1;
     }
     l
+}
+
+/// The mirror part of a smooth base (or of Velinov's Gaussian base, a mirror at light
+/// scale) inside a light's `region`, per unit radiance: `(1 − ρ)·F(wm, wo)` when the mirror
+/// direction `wm` of `wo` lies in the light, else 0 (Werner §5, Velinov Eq. 7). `ρ` is the
+/// scratch density at the point, or averaged over the footprint `fp` when it has one
+/// (Velinov Eq. 18).
+fn mirror_in_region<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    region: &LightRegion,
+    fp: &Ellipse,
+    set: &S,
+) -> f32 {
+    let mirror_base = BaseKind::from_u32(m.base) == BaseKind::Smooth || m.table.base_gaussian == 1;
+    let wm = Vec3::new(-wo.x, -wo.y, wo.z);
+    if !(mirror_base && wm.z > 0.0 && region.contains(wm)) {
+        return 0.0;
+    }
+    let weight = if fp.a1 > 0.0 && fp.a2 > 0.0 {
+        math::max(1.0 - footprint_density(m.table.sigma_um, fp, set), 0.0)
+    } else {
+        base_weight(m, sp.x_um, set)
+    };
+    weight * m.material.reflectance(wm, wo)
+}
+
+/// The mirror part of a smooth base under a sphere or triangle light for the models the
+/// renderer integrates by quadrature (`werner_blended`): `(1 − ρc)·F·L` when the mirror
+/// direction lies in the light, unoccluded (a delta base cannot be integrated over nodes;
+/// [`velinov_area_light`] adds it for `velinov`).
+pub fn area_mirror_radiance<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    light: &SceneLight,
+    lk: &Lookup<'_, S>,
+    fp: &Ellipse,
+) -> f32 {
+    if BaseKind::from_u32(m.base) != BaseKind::Smooth {
+        return 0.0;
+    }
+    match LightRegion::new(&local_light(sp, light)) {
+        Some(region) => mirror_in_region(m, sp, wo, &region, fp, &lk.scratches) * light.emission,
+        None => 0.0,
+    }
 }
 
 /// A GHS base's share of one quadrature node for Velinov's model under an area light:
