@@ -207,11 +207,12 @@ def _example():
 
 def test_tiny_render_mean_matches_scratchwave():
     """16×12 px of the comparison scene: Mitsuba's image mean (direct integrator, MIS over
-    the plugin's sample/pdf and the sphere light) is within TOL of scratchwave's."""
+    the plugin's sample/pdf and the sphere light; 4 renders × 64 spp) is within TOL of
+    scratchwave's (closed-form light integral, 64 spp)."""
     ex = _example()
     sc = ex.scene(16, 12, spp=64)
     ref, _ = ex.render_scratchwave(sc)
-    stack, _ = ex.render_mitsuba(sc, spp=16, seeds=[1, 2])
+    stack, _ = ex.render_mitsuba(sc, spp=64, seeds=[1, 2, 3, 4])
     mean = stack.mean()
     se = stack.mean(axis=(1, 2, 3)).std(ddof=1) / math.sqrt(stack.shape[0])
     assert ref.mean() > 0 and mean > 0
@@ -219,5 +220,8 @@ def test_tiny_render_mean_matches_scratchwave():
     assert rel < TOL, f"image mean: scratchwave {ref.mean():.6g}, Mitsuba {mean:.6g} ± {se:.2g} ({rel:.2%})"
 
 
-# Relative tolerance of the tiny render's image mean (see docs/mitsuba.md).
+# Relative tolerance of the tiny render's image mean. Measured: over five groups of four
+# seeds the relative difference had a standard deviation of 3.2 % (max 6.1 %; seeds 1-4:
+# +2.2 %), so 10 % is about 3 standard deviations; Mitsuba is deterministic for fixed
+# seeds. Dropping the cosine or mixing up wo/wi moves the mean by far more.
 TOL = 0.10
