@@ -223,5 +223,43 @@ def test_tiny_render_mean_matches_scratchwave():
 # Relative tolerance of the tiny render's image mean. Measured: over five groups of four
 # seeds the relative difference had a standard deviation of 3.2 % (max 6.1 %; seeds 1-4:
 # +2.2 %), so 10 % is about 3 standard deviations; Mitsuba is deterministic for fixed
-# seeds. Dropping the cosine or mixing up wo/wi moves the mean by far more.
+# seeds. Measured with deliberately broken plugins: swapping the scratch-space axes moves
+# the mean by +46 % (caught here); dropping the cosine from eval (-1.3 %) or swapping wo
+# and wi in eval (+2.2 %) is not caught by this mean (MIS leans on the BSDF samples, and
+# this Velinov material is nearly reciprocal) but by test_eval_pdf_sample_equal_material.
 TOL = 0.10
+
+
+_SPECTRAL = r"""
+import json, sys
+import numpy as np
+import mitsuba as mi
+mi.set_variant("scalar_spectral")
+import scratchwave as sw
+import scratchwave.mitsuba as swmi
+swmi.register()
+M = {"model": "velinov", "sigma_um": 10,
+     "scratches": [{"p0": [-1000, 0], "p1": [1000, 0], "width": 3, "depth": 0.4}]}
+scene = mi.load_dict({"type": "scene", "p": {"type": "rectangle",
+                      "bsdf": {"type": "scratchwave", "material": json.dumps(M)}}})
+si = scene.ray_intersect(mi.Ray3f(mi.Point3f(0.1, 0.000005, 1), mi.Vector3f(0, 0, -1)))
+si.wavelengths = mi.Spectrum(450, 500, 600, 700)
+si.wi = mi.Vector3f(0.3, 0.1, 0.9487)
+wo = mi.Vector3f(-0.3, 0.3, 0.9055)
+f = np.array(scene.shapes()[0].bsdf().eval(mi.BSDFContext(), si, wo), dtype=np.float32)
+x = np.array([[si.p[0] * 1000.0, si.p[1] * 1000.0]])
+ref = sw.Material(M).eval([[si.wi[0], si.wi[1], si.wi[2]]], [[wo[0], wo[1], wo[2]]], x_um=x,
+                          lambda_nm=[450, 500, 600, 700])[0] * np.float32(wo[2])
+assert f.shape == (4,) and np.all(f > 0), f
+np.testing.assert_array_equal(f, ref)
+print("ok")
+"""
+
+
+def test_spectral_variant_uses_ray_wavelengths():
+    """In scalar_spectral the plugin evaluates at si.wavelengths (own process: the variant
+    is global)."""
+    import subprocess
+
+    r = subprocess.run([sys.executable, "-c", _SPECTRAL], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr[-2000:]
