@@ -4,6 +4,7 @@
 //! file or field; nothing is written to stdout).
 
 use scratchwave_conformance::format::g9;
+use scratchwave_conformance::reference_cmd::flag;
 use scratchwave_conformance::{backends, reference_cmd, run};
 use scratchwave_host::{BackendError, CaseBatch, TableBackend, TableBatch};
 use scratchwave_spec::{SpecError, json, spec};
@@ -85,14 +86,6 @@ fn parse_flags<'a>(args: &'a [String], allowed: &[&str]) -> Result<Parsed<'a>, F
         }
     }
     Ok((pos, flags))
-}
-
-fn flag<'a>(flags: &[(&str, &'a str)], name: &str) -> Option<&'a str> {
-    flags
-        .iter()
-        .rev()
-        .find(|(f, _)| *f == name)
-        .map(|(_, v)| *v)
 }
 
 /// Bytes of memory a JSON spec takes while it is parsed and read, per byte of the file

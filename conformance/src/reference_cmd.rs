@@ -31,7 +31,8 @@ pub const REFERENCE_FLAGS: [&str; 7] = [
     "spectral",
 ];
 
-fn flag<'a>(flags: &[(&str, &'a str)], name: &str) -> Option<&'a str> {
+/// The last value given for flag `name` (a later flag overrides an earlier one).
+pub fn flag<'a>(flags: &[(&str, &'a str)], name: &str) -> Option<&'a str> {
     flags
         .iter()
         .rev()

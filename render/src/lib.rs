@@ -111,12 +111,29 @@ pub fn render_scene_region(
     }
     let t0 = Instant::now();
     let prep = prepare::prepare(scene);
-    let (image, stats, build_seconds) = match backend {
+    let ((image, stats), build_seconds) = with_ray_queries(&prep, backend, t0, |q| {
+        render::render_region(scene, &prep, q, region, progress)
+    })?;
+    Ok(Rendered {
+        image,
+        stats,
+        build_seconds,
+    })
+}
+
+/// Builds `backend`'s ray structure over `prep` and runs `f` with it; returns `f`'s result
+/// and the seconds from `t0` (the start of preparation) to the end of the build.
+pub(crate) fn with_ray_queries<R>(
+    prep: &prepare::Prepared,
+    backend: Backend,
+    t0: Instant,
+    f: impl FnOnce(&dyn scratchwave_host::RayQueries) -> R,
+) -> Result<(R, f64), RenderError> {
+    Ok(match backend {
         Backend::Cpu => {
             let bvh = prep.cpu_bvh();
             let build = t0.elapsed().as_secs_f64();
-            let (i, s) = render::render_region(scene, &prep, &bvh, region, progress);
-            (i, s, build)
+            (f(&bvh), build)
         }
         Backend::Embree => {
             let device = scratchwave_embree::Device::new()?;
@@ -125,13 +142,7 @@ pub fn render_scene_region(
             b.add_triangle_mesh(&v, &i)?;
             let es = b.commit()?;
             let build = t0.elapsed().as_secs_f64();
-            let (i, s) = render::render_region(scene, &prep, &es, region, progress);
-            (i, s, build)
+            (f(&es), build)
         }
-    };
-    Ok(Rendered {
-        image,
-        stats,
-        build_seconds,
     })
 }

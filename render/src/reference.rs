@@ -188,22 +188,16 @@ pub fn render_reference(
 ) -> Result<ReferenceImage, RenderError> {
     let t0 = Instant::now();
     let prep = prepare::prepare(scene);
-    match backend {
-        Backend::Cpu => {
-            let bvh = prep.cpu_bvh();
-            let build = t0.elapsed().as_secs_f64();
-            Ok(reference_with(scene, &prep, &bvh, opts, build, progress))
-        }
-        Backend::Embree => {
-            let device = scratchwave_embree::Device::new()?;
-            let mut b = scratchwave_embree::SceneBuilder::new(&device)?;
-            let (v, i) = prep.indexed();
-            b.add_triangle_mesh(&v, &i)?;
-            let es = b.commit()?;
-            let build = t0.elapsed().as_secs_f64();
-            Ok(reference_with(scene, &prep, &es, opts, build, progress))
-        }
-    }
+    let (image, build) = crate::with_ray_queries(&prep, backend, t0, |q| {
+        reference_with(scene, &prep, q, opts, progress)
+    })?;
+    Ok(ReferenceImage {
+        stats: ReferenceStats {
+            build_seconds: build,
+            ..image.stats
+        },
+        ..image
+    })
 }
 
 /// Running mean and sum of squared deviations of the pass means (Welford).
@@ -255,7 +249,6 @@ fn reference_with<Q: RayQueries + ?Sized>(
     prep: &Prepared,
     queries: &Q,
     opts: &ReferenceOptions,
-    build_seconds: f64,
     progress: &(dyn Fn(usize, usize, u32) + Sync),
 ) -> ReferenceImage {
     let start = Instant::now();
@@ -365,7 +358,8 @@ fn reference_with<Q: RayQueries + ?Sized>(
             shadow_rays: ctx.shadow_rays.into_inner(),
             area_fallback_samples: ctx.fallback.into_inner(),
             seconds,
-            build_seconds,
+            // Set by the caller, which built the ray structure.
+            build_seconds: 0.0,
             converged_pixels: converged,
             floor,
         },
