@@ -9,8 +9,9 @@ use scratchwave_host::ScratchLookup;
 use scratchwave_kernel::bsdf::{self, BsdfMaterial, Lookup, ShadingPoint, Wavelengths};
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::glam::{Vec2, Vec3};
+use scratchwave_kernel::render::shading::SceneModel;
 use scratchwave_kernel::scratch::{MAX_SPECTRAL, Profile, Scratch};
-use scratchwave_spec::{json, material, scratches};
+use scratchwave_spec::{SpecError, json, material, scratches};
 use std::path::Path;
 
 /// Queries per parallel work item.
@@ -256,6 +257,13 @@ impl Bsdf {
         let v = json::parse(text, "material")?;
         let dir = base_dir.unwrap_or(Path::new("."));
         let mut spec = material::scene_material(&v, "material", dir, usize::MAX)?;
+        if SceneModel::from_u32(spec.shade.model) == SceneModel::Auto {
+            return Err(Error::Input(SpecError::field(
+                "material.model",
+                "\"auto\" chooses per hit and light inside the renderer; a BSDF evaluated \
+                 at single directions takes \"werner\", \"werner_blended\", \"velinov\" or \"ghs\"",
+            )));
+        }
         if let Some(s) = scratches {
             if v.get("scratches").is_some() {
                 return Err(Error::arg(

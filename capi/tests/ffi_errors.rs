@@ -117,3 +117,16 @@ fn bad_arguments_name_themselves() {
         sw_bsdf_free(ptr::null_mut());
     }
 }
+
+/// `"model": "auto"` needs a light to choose its model: the BSDF interface refuses it with
+/// the field named.
+#[test]
+fn auto_model_is_refused_with_its_field() {
+    let json = CString::new(r#"{"model": "auto", "tolerance": 0.01}"#).unwrap();
+    let mut b: *mut SwBsdf = ptr::null_mut();
+    // SAFETY: valid arguments.
+    let s = unsafe { sw_bsdf_from_json(json.as_ptr(), ptr::null(), ptr::null(), &mut b) };
+    assert_eq!(s, Status::InvalidInput);
+    assert!(b.is_null());
+    assert!(last().starts_with("material.model: "), "{}", last());
+}

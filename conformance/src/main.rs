@@ -18,7 +18,7 @@ const USAGE: &str = "usage:
   scratchwave table SPEC.json [--backend cpu|simd|spirv|all]
   scratchwave footprint SPEC.json [--backend cpu|simd|spirv]
   scratchwave light SPEC.json [--backend cpu|simd|spirv]
-  scratchwave render SCENE.json [--backend cpu|embree|spirv] [--out IMAGE.exr] [--png PREVIEW.png] [--exposure EV]
+  scratchwave render SCENE.json [--backend cpu|embree|spirv] [--out IMAGE.exr] [--png PREVIEW.png] [--exposure EV] [--model-map MAP.png]
   scratchwave render SCENE.json --integrator reference [--backend cpu|embree] [--out REF.exr] [--png PREVIEW.png]
                     [--rel-stderr 0.01] [--min-spp 256] [--max-spp 65536] [--seed 1] [--spectral continuous|scene] [--pixel box|scene]
                                                   Monte Carlo reference: mean, stderr.R/G/B, spp (docs/reference.md)
@@ -221,7 +221,7 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
             Ok(ExitCode::SUCCESS)
         }
         "render" => {
-            let mut allowed = vec!["backend", "out", "png", "exposure"];
+            let mut allowed = vec!["backend", "out", "png", "exposure", "model-map"];
             allowed.extend(reference_cmd::REFERENCE_FLAGS);
             let (pos, flags) = parse_flags(rest, &allowed)?;
             let file = match pos.as_slice() {
@@ -403,11 +403,20 @@ fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failur
             other => SpecError::field(file, other.to_string()),
         })
     };
+    if flag(flags, "model-map").is_some() && out.image.model_choice.is_empty() {
+        return Err(Failure::Spec(SpecError::field(
+            "--model-map",
+            "no hit of a material with \"model\": \"auto\" was shaded, so there is no map",
+        )));
+    }
     if let Some(p) = flag(flags, "out") {
         output::write_exr(Path::new(p), &out.image, &attrs).map_err(write_err)?;
     }
     if let Some(p) = flag(flags, "png") {
         output::write_png(Path::new(p), &out.image, exposure).map_err(write_err)?;
+    }
+    if let Some(p) = flag(flags, "model-map") {
+        output::write_model_map(Path::new(p), &out.image).map_err(write_err)?;
     }
     eprintln!(
         "rendered {}x{} in {:.3} s (+{:.3} s build), {:.4} Mrays/s, {} shading evaluations ({})",
@@ -419,6 +428,15 @@ fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failur
         st.shading_evaluations,
         name
     );
+    let pairs = st.auto_coherent + st.auto_incoherent;
+    if pairs > 0 {
+        eprintln!(
+            "auto: {} of {pairs} hit-light pairs coherent ({:.1} %), {} incoherent",
+            st.auto_coherent,
+            100.0 * st.auto_coherent as f64 / pairs as f64,
+            st.auto_incoherent
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }
 

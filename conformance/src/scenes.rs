@@ -212,6 +212,7 @@ pub fn difference_image(a: &Image, b: &Image) -> Image {
             .into_iter()
             .map(|d| d.map(|x| x as f32))
             .collect(),
+        model_choice: Vec::new(),
     }
 }
 

@@ -218,3 +218,56 @@ fn missing_and_malformed_meshes() {
         "objects[0].file: cannot read mesh",
     );
 }
+
+/// `"model": "auto"`: the EXR gets the `auto.coherent`/`auto.incoherent` channels, stderr a
+/// line with the counts, `--model-map` a PNG; `--model-map` on a scene without `auto`
+/// exits 2 naming the flag and writes nothing.
+#[test]
+fn auto_model_writes_its_map_and_counts() {
+    let auto = GOOD.replacen(
+        r#""model": "werner""#,
+        r#""model": "auto", "tolerance": 0.01"#,
+        1,
+    );
+    let exr = dir().join("auto.exr");
+    let map = dir().join("auto-map.png");
+    let (out, _) = render(
+        "auto",
+        &auto,
+        &[
+            "--out",
+            exr.to_str().unwrap(),
+            "--model-map",
+            map.to_str().unwrap(),
+        ],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let line = stderr.lines().find(|l| l.starts_with("auto: ")).unwrap();
+    // 8×6 pixels, one light: 48 hit–light pairs.
+    assert!(line.contains(" of 48 hit-light pairs coherent"), "{line}");
+    let ch = scratchwave_render::layered_exr::Channels::read(&exr).unwrap();
+    let (c, i) = (
+        ch.channel("auto.coherent").unwrap(),
+        ch.channel("auto.incoherent").unwrap(),
+    );
+    assert!(c.iter().zip(i).all(|(a, b)| a + b == 1.0), "{c:?} {i:?}");
+    assert!(std::fs::read(&map).unwrap().starts_with(b"\x89PNG"));
+
+    let exr = dir().join("no-auto.exr");
+    let map = dir().join("no-auto-map.png");
+    let (out, _) = render(
+        "no-auto",
+        GOOD,
+        &[
+            "--out",
+            exr.to_str().unwrap(),
+            "--model-map",
+            map.to_str().unwrap(),
+        ],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.starts_with("error: --model-map: "), "{stderr}");
+    assert!(!exr.exists() && !map.exists());
+}

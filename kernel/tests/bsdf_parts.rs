@@ -212,7 +212,8 @@ fn shade_of(m: &BsdfMaterial) -> ShadeMaterial {
         ghs: m.ghs,
         model: m.model,
         base: m.base,
-        pad: [0; 2],
+        tolerance: 0.0,
+        pad: 0,
     }
 }
 

@@ -146,6 +146,7 @@ impl Channels {
                 .zip(b)
                 .map(|((&r, &g), &b)| [r, g, b])
                 .collect(),
+            model_choice: Vec::new(),
         })
     }
 }

@@ -39,13 +39,32 @@ pub(crate) fn atomically(
 }
 
 /// Writes `image` as OpenEXR: float32 R, G, B (linear), one text attribute per
-/// `(name, value)` in `attributes` (scene name, backend, timings).
+/// `(name, value)` in `attributes` (scene name, backend, timings). An image with a
+/// model-choice map (`"model": "auto"`) also gets the channels `auto.coherent` and
+/// `auto.incoherent`: per pixel, the hit–light pairs shaded with each model.
 pub fn write_exr(
     path: &Path,
     image: &Image,
     attributes: &[(&str, String)],
 ) -> Result<(), RenderError> {
+    use crate::layered_exr::{ExrLayer, write_layers};
     use exr::prelude::*;
+    if !image.model_choice.is_empty() {
+        let count =
+            |k: usize| -> Vec<f32> { image.model_choice.iter().map(|c| c[k] as f32).collect() };
+        let (coherent, incoherent) = (count(0), count(1));
+        return write_layers(
+            path,
+            image.width,
+            image.height,
+            &[
+                ExrLayer::Rgb("", &image.rgb),
+                ExrLayer::Scalar("auto.coherent", &coherent),
+                ExrLayer::Scalar("auto.incoherent", &incoherent),
+            ],
+            attributes,
+        );
+    }
     let w = image.width as usize;
     let h = image.height as usize;
     atomically(path, |tmp| {
@@ -76,19 +95,62 @@ pub fn preview_byte(linear: f32, exposure: f32) -> u8 {
 
 /// Writes a PNG preview: linear values scaled by `2^exposure`, clamped, sRGB-encoded.
 pub fn write_png(path: &Path, image: &Image, exposure: f32) -> Result<(), RenderError> {
+    write_rgb8_png(path, image.width, image.height, 1, |k| {
+        image.rgb[k].map(|c| preview_byte(c, exposure))
+    })
+}
+
+/// Writes an 8-bit RGB PNG of a `width × height` image, each pixel `scale × scale` wide,
+/// pixel `k` (row-major from the top) coloured `colour(k)`.
+pub fn write_rgb8_png(
+    path: &Path,
+    width: u32,
+    height: u32,
+    scale: u32,
+    colour: impl Fn(usize) -> [u8; 3],
+) -> Result<(), RenderError> {
+    let s = scale.max(1);
+    let mut data = Vec::with_capacity((width * s * height * s * 3) as usize);
+    for y in 0..height * s {
+        for x in 0..width * s {
+            data.extend_from_slice(&colour(((y / s) * width + x / s) as usize));
+        }
+    }
     atomically(path, |tmp| {
         let file = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
-        let mut enc = png::Encoder::new(std::io::BufWriter::new(file), image.width, image.height);
+        let mut enc = png::Encoder::new(std::io::BufWriter::new(file), width * s, height * s);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         let mut writer = enc.write_header().map_err(|e| e.to_string())?;
-        let data: Vec<u8> = image
-            .rgb
-            .iter()
-            .flat_map(|p| p.map(|c| preview_byte(c, exposure)))
-            .collect();
         writer.write_image_data(&data).map_err(|e| e.to_string())?;
         writer.finish().map_err(|e| e.to_string())
+    })
+}
+
+/// The model-choice map's colour of a pixel with `c` coherent and `i` incoherent
+/// hit–light pairs: dark grey without any, blue for all incoherent through to orange for
+/// all coherent.
+pub fn model_choice_colour(c: u32, i: u32) -> [u8; 3] {
+    if c + i == 0 {
+        return [24, 24, 24];
+    }
+    let f = c as f32 / (c + i) as f32;
+    let mix = |a: f32, b: f32| (a + (b - a) * f).round() as u8;
+    [mix(40.0, 255.0), mix(110.0, 140.0), mix(255.0, 20.0)]
+}
+
+/// Writes the model-choice map of an `auto` render as a PNG, 4× enlarged
+/// ([`model_choice_colour`]); an image without a map is an error.
+pub fn write_model_map(path: &Path, image: &Image) -> Result<(), RenderError> {
+    if image.model_choice.is_empty() {
+        return Err(fail(
+            path,
+            "no model-choice map: no hit of a material with \"model\": \"auto\" was shaded",
+        ));
+    }
+    write_rgb8_png(path, image.width, image.height, 4, |k| {
+        let c = image.model_choice[k];
+        model_choice_colour(c[0], c[1])
     })
 }
 
@@ -110,5 +172,6 @@ pub fn read_exr(path: &Path) -> Result<crate::render::Image, RenderError> {
         width: res.width() as u32,
         height: res.height() as u32,
         rgb,
+        model_choice: Vec::new(),
     })
 }

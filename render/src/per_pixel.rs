@@ -88,6 +88,17 @@ pub fn image_from_pixels(width: u32, height: u32, values: &[PixelValue]) -> Imag
         width,
         height,
         rgb: values.iter().map(|v| v.rgb).collect(),
+        model_choice: if values
+            .iter()
+            .any(|v| v.auto_coherent + v.auto_incoherent > 0)
+        {
+            values
+                .iter()
+                .map(|v| [v.auto_coherent, v.auto_incoherent])
+                .collect()
+        } else {
+            Vec::new()
+        },
     }
 }
 
@@ -99,5 +110,7 @@ pub fn image_stats(frame: &FrameParams, values: &[PixelValue]) -> RenderStats {
         shadow_rays: values.iter().map(|v| u64::from(v.shadow_rays)).sum(),
         shading_evaluations: values.iter().map(|v| u64::from(v.shading)).sum(),
         seconds: 0.0,
+        auto_coherent: values.iter().map(|v| u64::from(v.auto_coherent)).sum(),
+        auto_incoherent: values.iter().map(|v| u64::from(v.auto_incoherent)).sum(),
     }
 }

@@ -346,11 +346,13 @@ fn reference_with<Q: RayQueries + ?Sized>(
             width: w,
             height: h,
             rgb: mean,
+            model_choice: Vec::new(),
         },
         stderr: Image {
             width: w,
             height: h,
             rgb: stderr,
+            model_choice: Vec::new(),
         },
         spp,
         stats: ReferenceStats {

@@ -30,6 +30,22 @@ pub struct Image {
     pub height: u32,
     /// `width·height` linear RGB values, row-major from the top-left pixel.
     pub rgb: Vec<[f32; 3]>,
+    /// Per pixel (same order), the hit–light pairs of `"model": "auto"` materials shaded
+    /// with the coherent and with the incoherent model
+    /// (`scratchwave_kernel::render::model_choice`); empty when no such pair was shaded.
+    pub model_choice: Vec<[u32; 2]>,
+}
+
+impl Image {
+    /// An image of linear RGB values without a model-choice map.
+    pub fn from_rgb(width: u32, height: u32, rgb: Vec<[f32; 3]>) -> Image {
+        Image {
+            width,
+            height,
+            rgb,
+            model_choice: Vec::new(),
+        }
+    }
 }
 
 /// Counts and time of one render.
@@ -44,6 +60,10 @@ pub struct RenderStats {
     pub shading_evaluations: u64,
     /// Wall time of the tile loop (s).
     pub seconds: f64,
+    /// Hit–light pairs of `auto` materials shaded with the coherent model.
+    pub auto_coherent: u64,
+    /// Hit–light pairs of `auto` materials shaded with the incoherent model.
+    pub auto_incoherent: u64,
 }
 
 impl RenderStats {
@@ -57,6 +77,9 @@ struct Counters {
     shadow: AtomicU64,
     shading: AtomicU64,
 }
+
+/// One pixel of a tile: linear RGB and its `auto` choices (coherent, incoherent).
+type TilePixel = ([f32; 3], [u32; 2]);
 
 /// A rectangle of pixels: columns `x0..x0 + width`, rows `y0..y0 + height` (from the top).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -132,7 +155,7 @@ pub fn render_region<Q: RayQueries + ?Sized>(
         let ys = region.y0 + ty * TILE..region.y0 + ((ty + 1) * TILE).min(h);
         (xs, ys)
     };
-    let tiles: Vec<(u32, Vec<[f32; 3]>)> = (0..total as u32)
+    let tiles: Vec<(u32, Vec<TilePixel>)> = (0..total as u32)
         .into_par_iter()
         .map(|tile| {
             let (xs, ys) = tile_pixels(tile);
@@ -144,28 +167,40 @@ pub fn render_region<Q: RayQueries + ?Sized>(
         .collect();
     let seconds = start.elapsed().as_secs_f64();
     let mut rgb = vec![[0.0f32; 3]; (w as usize) * (h as usize)];
+    let mut choice = vec![[0u32; 2]; rgb.len()];
     for (tile, px) in tiles {
         let (xs, ys) = tile_pixels(tile);
         let mut k = 0;
         for j in ys {
             for i in xs.clone() {
-                rgb[((j - region.y0) * w + (i - region.x0)) as usize] = px[k];
+                let at = ((j - region.y0) * w + (i - region.x0)) as usize;
+                (rgb[at], choice[at]) = px[k];
                 k += 1;
             }
         }
     }
+    let auto_coherent = choice.iter().map(|c| u64::from(c[0])).sum();
+    let auto_incoherent = choice.iter().map(|c| u64::from(c[1])).sum();
+
     let spp = u64::from(scene.settings.spp.max(1));
     let stats = RenderStats {
         primary_rays: u64::from(w) * u64::from(h) * spp,
         shadow_rays: counters.shadow.into_inner(),
         shading_evaluations: counters.shading.into_inner(),
         seconds,
+        auto_coherent,
+        auto_incoherent,
     };
     (
         Image {
             width: w,
             height: h,
             rgb,
+            model_choice: if auto_coherent + auto_incoherent > 0 {
+                choice
+            } else {
+                Vec::new()
+            },
         },
         stats,
     )
@@ -179,7 +214,7 @@ fn render_tile<Q: RayQueries + ?Sized>(
     xs: std::ops::Range<u32>,
     ys: std::ops::Range<u32>,
     counters: &Counters,
-) -> Vec<[f32; 3]> {
+) -> Vec<TilePixel> {
     let w = cam.width_px;
     let frame = frame_params(scene, prep);
     let spp = frame.spp;
@@ -232,6 +267,7 @@ fn render_tile<Q: RayQueries + ?Sized>(
     let (mut slot, mut ray) = (0usize, 0usize);
     for (p, _) in pixels.iter().enumerate() {
         let mut acc = [0.0f32; 3];
+        let before = [counts.auto_coherent, counts.auto_incoherent];
         for k in 0..spp as usize {
             let Some(hp) = &points[p * spp as usize + k] else {
                 continue;
@@ -261,7 +297,13 @@ fn render_tile<Q: RayQueries + ?Sized>(
                 );
             }
         }
-        out.push(pixel_rgb(&frame, acc));
+        out.push((
+            pixel_rgb(&frame, acc),
+            [
+                counts.auto_coherent - before[0],
+                counts.auto_incoherent - before[1],
+            ],
+        ));
     }
     counters
         .shading

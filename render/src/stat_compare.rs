@@ -105,11 +105,13 @@ pub fn compare(image: &Image, mean: &Image, stderr: &Image, floor: f64) -> Compa
             width: image.width,
             height: image.height,
             rgb: z,
+            model_choice: Vec::new(),
         },
         rel_err: Image {
             width: image.width,
             height: image.height,
             rgb: rel,
+            model_choice: Vec::new(),
         },
         floor,
     }
@@ -146,22 +148,7 @@ pub fn heat_colour(z: [f32; 3], rel: [f32; 3]) -> [u8; 3] {
 /// Writes the heat map of `cmp` as a PNG, each pixel [`HEAT_MAP_SCALE`]² wide
 /// ([`heat_colour`]).
 pub fn write_heat_map(path: &Path, cmp: &Comparison) -> Result<(), RenderError> {
-    let s = HEAT_MAP_SCALE;
-    let (w, h) = (cmp.z.width, cmp.z.height);
-    let mut data = Vec::with_capacity((w * s * h * s * 3) as usize);
-    for y in 0..h * s {
-        for x in 0..w * s {
-            let k = ((y / s) * w + x / s) as usize;
-            data.extend_from_slice(&heat_colour(cmp.z.rgb[k], cmp.rel_err.rgb[k]));
-        }
-    }
-    output::atomically(path, |tmp| {
-        let file = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
-        let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w * s, h * s);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut writer = enc.write_header().map_err(|e| e.to_string())?;
-        writer.write_image_data(&data).map_err(|e| e.to_string())?;
-        writer.finish().map_err(|e| e.to_string())
+    output::write_rgb8_png(path, cmp.z.width, cmp.z.height, HEAT_MAP_SCALE, |k| {
+        heat_colour(cmp.z.rgb[k], cmp.rel_err.rgb[k])
     })
 }

@@ -30,6 +30,7 @@ fn per_pixel_equals_tile_loop_on_every_conformance_scene() {
             let bits = |p: &[f32; 3]| p.map(f32::to_bits);
             assert_eq!(bits(a), bits(b), "{name}: pixel {k}: {a:?} vs {b:?}");
         }
+        assert_eq!(tiles.model_choice, pixels.model_choice, "{name}");
         assert_eq!(ts.shading_evaluations, ps.shading_evaluations, "{name}");
         assert_eq!(ts.shadow_rays, ps.shadow_rays, "{name}");
         assert_eq!(ts.primary_rays, ps.primary_rays, "{name}");

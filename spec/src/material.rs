@@ -13,6 +13,9 @@ use scratchwave_kernel::table::{Model, TableParams};
 use serde_json::Value;
 use std::path::Path;
 
+/// The `tolerance` of an `auto` material that gives none.
+pub const DEFAULT_TOLERANCE: f32 = 0.01;
+
 /// A material as read: the kernel record and its scratches (µm of scratch space).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MaterialSpec {
@@ -22,10 +25,12 @@ pub struct MaterialSpec {
     pub scratches: Vec<Scratch>,
 }
 
-/// `{"model": "werner" | "werner_blended" | "velinov" | "ghs", "sigma_um", "material",
-/// "options", "scratches", "base"}` at JSON path `path`. The depth term defaults to each
-/// paper's (exact for `werner` and `werner_blended`, small-angle for `velinov`);
-/// `options.depth_term` overrides it. Scratch files are read relative to
+/// `{"model": "werner" | "werner_blended" | "velinov" | "auto" | "ghs", "sigma_um",
+/// "material", "options", "scratches", "base", "tolerance"}` at JSON path `path`. The depth
+/// term defaults to each paper's (exact for `werner`, `werner_blended` and `auto`,
+/// small-angle for `velinov`); `options.depth_term` overrides it. `tolerance` (model
+/// `auto` only, in (0, 1), default [`DEFAULT_TOLERANCE`]) bounds the relative error the
+/// model choice may add (`kernel::render::model_choice`). Scratch files are read relative to
 /// `base_dir`; at most `budget` scratch segments are accepted.
 pub fn scene_material(
     v: &Value,
@@ -43,13 +48,23 @@ pub fn scene_material(
             "options",
             "scratches",
             "base",
+            "tolerance",
         ],
     )?;
-    let model = m.choice("model", &["werner", "werner_blended", "velinov", "ghs"])?;
+    let model = m.choice(
+        "model",
+        &["werner", "werner_blended", "velinov", "auto", "ghs"],
+    )?;
+    if model != "auto" && m.get("tolerance").is_some() {
+        return Err(SpecError::field(
+            m.path_of("tolerance"),
+            "only meaningful for model \"auto\"",
+        ));
+    }
     let mut shade = ShadeMaterial::default();
     let mut scratches = Vec::new();
     if model == "ghs" {
-        for key in ["sigma_um", "options", "scratches", "base"] {
+        for key in ["sigma_um", "options", "scratches", "base", "tolerance"] {
             if m.get(key).is_some() {
                 return Err(SpecError::field(
                     m.path_of(key),
@@ -64,9 +79,22 @@ pub fn scene_material(
     let (tm, sm) = match model {
         "werner_blended" => (Model::WernerBlended, SceneModel::WernerBlended),
         "velinov" => (Model::Velinov, SceneModel::Velinov),
+        "auto" => (Model::Werner, SceneModel::Auto),
         _ => (Model::Werner, SceneModel::Werner),
     };
     shade.model = sm as u32;
+    if sm == SceneModel::Auto {
+        shade.tolerance = match m.opt_num("tolerance")? {
+            Some(t) if t > 0.0 && t < 1.0 => t as f32,
+            Some(_) => {
+                return Err(SpecError::field(
+                    m.path_of("tolerance"),
+                    "must be in (0, 1): the relative error the model choice may add",
+                ));
+            }
+            None => DEFAULT_TOLERANCE,
+        };
+    }
     shade.material = match m.get("material") {
         Some(x) => spec::material(x, &m.path_of("material"))?,
         None => Material::constant(1.0),
@@ -98,7 +126,7 @@ pub fn scene_material(
     }
     if let Some(b) = m.get("base") {
         let bp = m.path_of("base");
-        if tm == Model::Werner {
+        if sm == SceneModel::Werner {
             return Err(SpecError::field(
                 bp,
                 "model \"werner\" has its own base; use \"werner_blended\"",

@@ -97,8 +97,17 @@ impl BsdfMaterial {
     }
 
     /// The renderer's material record as a BSDF material. The record's depth term is kept
-    /// as written (it is explicit there), so the BSDF equals the renderer's `brdf`.
+    /// as written (it is explicit there), so the BSDF equals the renderer's `brdf`. An
+    /// `auto` record (whose choice needs a light) becomes its coherent model
+    /// ([`crate::render::model_choice::coherent`]).
     pub fn from_shade(m: &ShadeMaterial) -> BsdfMaterial {
+        let coherent;
+        let m = if SceneModel::from_u32(m.model) == SceneModel::Auto {
+            coherent = crate::render::model_choice::coherent(m);
+            &coherent
+        } else {
+            m
+        };
         let depth = if DepthTerm::from_u32(m.table.depth_term) == DepthTerm::Exact {
             DepthChoice::Exact
         } else {

@@ -8,6 +8,7 @@
 //! | `footprint` | the pixel footprint ellipse from ray differentials; Velinov averaged over it |
 //! | `surface` | hit position, shading frame and scratch-space position of an object |
 //! | `shading` | the BRDF of a scene material and the contribution of each light kind |
+//! | `model_choice` | `"model": "auto"`: coherent or incoherent per hit and light, within a tolerance |
 //! | `area` | deterministic quadrature nodes over sphere and triangle lights |
 //! | `radiance` | the light loop of a hit and the value of a pixel (first shadow rays, probes' consensus, wavelength groups) |
 //! | `spectrum` | wavelengths of a spectrum mode, CIE 1931 2° observer, XYZ → linear sRGB |
@@ -16,6 +17,7 @@
 pub mod area;
 pub mod camera;
 pub mod footprint;
+pub mod model_choice;
 pub mod pixel;
 pub mod radiance;
 pub mod shading;

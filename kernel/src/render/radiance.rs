@@ -12,8 +12,9 @@
 use super::area::{self, SceneLight};
 use super::camera::{Camera, RayDifferential};
 use super::footprint::footprint_ellipse;
+use super::model_choice::{self, Choice};
 use super::pixel::sample_offset;
-use super::shading::{self, ShadeMaterial};
+use super::shading::{self, SceneModel, ShadeMaterial};
 use super::spectrum::{self, SpectrumMode};
 use super::surface::{Surface, SurfaceKind, SurfacePoint, TriangleUv, hit_position, mesh_point};
 use crate::bsdf::{Lookup, Wavelengths};
@@ -111,6 +112,16 @@ impl FrameParams {
     #[inline]
     pub fn wavelength_count(&self) -> u32 {
         spectrum::wavelength_count(self.mode(), self.spectrum_samples)
+    }
+
+    /// The longest wavelength of the frame (nm): the first or the last (the spectral
+    /// samples ascend, RGB descends).
+    #[inline]
+    pub fn longest_wavelength_nm(&self) -> f32 {
+        let n = self.wavelength_count();
+        let last = if n > 0 { n - 1 } else { 0 };
+        let f = |k| spectrum::wavelength_nm(self.mode(), k, self.spectrum_samples, self.lambda_nm);
+        math::max(f(0), f(last))
     }
 
     /// The scale of the footprint ellipse (`1/√spp`), or 0 without footprints.
@@ -296,6 +307,10 @@ pub struct ShadeCounts {
     pub shading: u32,
     /// Shadow rays traced (the first rays included).
     pub shadow_rays: u32,
+    /// Hit–light pairs of `auto` materials shaded with the coherent model.
+    pub auto_coherent: u32,
+    /// Hit–light pairs of `auto` materials shaded with the incoherent model.
+    pub auto_incoherent: u32,
 }
 
 /// Shades one light at one hit into the accumulator `acc` ([`spectrum::accumulate`]),
@@ -316,6 +331,29 @@ pub fn shade_light<S: ScratchSet, O: Occlusion>(
     acc: &mut [f32; 3],
     counts: &mut ShadeCounts,
 ) {
+    // `auto`: the model for this hit and light (`model_choice`), counted; below, `m` is
+    // a fixed model.
+    let resolved;
+    let m = if SceneModel::from_u32(m.model) == SceneModel::Auto {
+        let reach = model_choice::reach(&lk.scratches, hp.sp.x_um, m.table.sigma_um, &hp.fp);
+        let choice = model_choice::choose(
+            m,
+            &hp.sp,
+            hp.wo,
+            light,
+            &reach,
+            frame.longest_wavelength_nm(),
+        );
+        if choice == Choice::Incoherent {
+            counts.auto_incoherent += 1;
+        } else {
+            counts.auto_coherent += 1;
+        }
+        resolved = model_choice::resolve(m, choice);
+        &resolved
+    } else {
+        m
+    };
     let n_lambda = frame.wavelength_count();
     let mode = frame.mode();
     if shading::is_delta(light) {
@@ -619,8 +657,12 @@ pub struct PixelValue {
     pub shading: u32,
     /// Shadow rays.
     pub shadow_rays: u32,
+    /// [`ShadeCounts::auto_coherent`].
+    pub auto_coherent: u32,
+    /// [`ShadeCounts::auto_incoherent`].
+    pub auto_incoherent: u32,
     /// Explicit padding.
-    pub pad: [u32; 3],
+    pub pad: u32,
 }
 
 const _: () = assert!(core::mem::size_of::<PixelValue>() == 32);
@@ -694,6 +736,8 @@ pub fn pixel_radiance<'a, T: Tracer, L: SceneScratches<'a>>(
         rgb: pixel_rgb(frame, acc),
         shading: counts.shading,
         shadow_rays: counts.shadow_rays,
-        pad: [0; 3],
+        auto_coherent: counts.auto_coherent,
+        auto_incoherent: counts.auto_incoherent,
+        pad: 0,
     }
 }

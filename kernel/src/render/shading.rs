@@ -41,6 +41,10 @@ gpu_enum! {
         Velinov = 2,
         /// Holzschuch & Pacanowski's two-scale BRDF alone.
         Ghs = 3,
+        /// Werner's coherent model where the scratches interfere, Velinov's incoherent sum
+        /// (and its closed form under area lights) elsewhere, chosen per hit and light
+        /// within [`ShadeMaterial::tolerance`] ([`super::model_choice`]).
+        Auto = 4,
     }
     fallback = Werner;
 }
@@ -74,8 +78,10 @@ pub struct ShadeMaterial {
     pub model: u32,
     /// A [`BaseKind`] as `u32`.
     pub base: u32,
+    /// [`SceneModel::Auto`]: the relative error the model choice may add (0 otherwise).
+    pub tolerance: f32,
     /// Explicit padding.
-    pub pad: [u32; 2],
+    pub pad: u32,
 }
 
 const _: () = assert!(core::mem::size_of::<ShadeMaterial>() == 128);
