@@ -101,13 +101,13 @@ impl BsdfMaterial {
     /// `auto` record (whose choice needs a light) becomes its coherent model
     /// ([`crate::render::model_choice::coherent`]).
     pub fn from_shade(m: &ShadeMaterial) -> BsdfMaterial {
-        let coherent;
+        // A copy, not a choice between references (rust-gpu cannot merge pointers).
         let m = if SceneModel::from_u32(m.model) == SceneModel::Auto {
-            coherent = crate::render::model_choice::coherent(m);
-            &coherent
+            crate::render::model_choice::coherent(m)
         } else {
-            m
+            *m
         };
+        let m = &m;
         let depth = if DepthTerm::from_u32(m.table.depth_term) == DepthTerm::Exact {
             DepthChoice::Exact
         } else {

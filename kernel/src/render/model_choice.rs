@@ -31,7 +31,7 @@
 //!    lights measured (random scratches at Velinov's benchmark density under a light of
 //!    radius 0.1 rad: median 5 %, 99th percentile 37 % between the two models), so no rule
 //!    trades them.
-
+//!
 //! Everything here is a few comparisons and one walk over the scratches in reach without
 //! evaluating any of them.
 

@@ -332,8 +332,8 @@ pub fn shade_light<S: ScratchSet, O: Occlusion>(
     counts: &mut ShadeCounts,
 ) {
     // `auto`: the model for this hit and light (`model_choice`), counted; below, `m` is
-    // a fixed model.
-    let resolved;
+    // a fixed model. A copy, not a choice between references: rust-gpu cannot merge
+    // pointers (an `OpPhi` of pointers needs the VariablePointers capability).
     let m = if SceneModel::from_u32(m.model) == SceneModel::Auto {
         let reach = model_choice::reach(&lk.scratches, hp.sp.x_um, m.table.sigma_um, &hp.fp);
         let choice = model_choice::choose(
@@ -349,11 +349,11 @@ pub fn shade_light<S: ScratchSet, O: Occlusion>(
         } else {
             counts.auto_coherent += 1;
         }
-        resolved = model_choice::resolve(m, choice);
-        &resolved
+        model_choice::resolve(m, choice)
     } else {
-        m
+        *m
     };
+    let m = &m;
     let n_lambda = frame.wavelength_count();
     let mode = frame.mode();
     if shading::is_delta(light) {
