@@ -8,6 +8,7 @@ use scratchwave_kernel::lights::{BandRule, Cone, LightKind, SiMode};
 use scratchwave_kernel::material::{FresnelAngle, MaterialKind};
 use scratchwave_kernel::render::area::SceneLightKind;
 use scratchwave_kernel::render::camera::Projection;
+use scratchwave_kernel::render::model_choice::Choice;
 use scratchwave_kernel::render::shading::{BaseKind, SceneModel};
 use scratchwave_kernel::render::spectrum::SpectrumMode;
 use scratchwave_kernel::render::surface::SurfaceKind;
@@ -65,12 +66,19 @@ fn every_gpu_enum_round_trips_and_rejects_unknown_codes() {
         SceneLightKind::from_u32,
     );
     check(
+        "Choice",
+        &[Choice::Coherent, Choice::Incoherent],
+        Choice::Coherent,
+        Choice::from_u32,
+    );
+    check(
         "SceneModel",
         &[
             SceneModel::Werner,
             SceneModel::WernerBlended,
             SceneModel::Velinov,
             SceneModel::Ghs,
+            SceneModel::Auto,
         ],
         SceneModel::Werner,
         SceneModel::from_u32,
