@@ -7,6 +7,7 @@
 //! * `benches/lights.rs`: timing of the closed forms per light kind and method.
 
 pub mod svg;
+pub mod tradeoff;
 
 use scratchwave_host::generate::{HalfLength, ProfileMix, ScratchRecipe, Uniform};
 pub use scratchwave_host::rng::SplitMix64 as Rng;

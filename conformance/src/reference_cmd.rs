@@ -10,8 +10,8 @@
 
 use scratchwave_render::layered_exr::{Channels, ExrLayer, write_layers};
 use scratchwave_render::reference::{
-    FLOOR_FRACTION, PixelSampling, ReferenceImage, ReferenceOptions, SpectralSampling,
-    quantile_sorted, render_reference,
+    PixelSampling, ReferenceImage, ReferenceOptions, SpectralSampling, quantile_sorted,
+    relative_error_floor, render_reference,
 };
 use scratchwave_render::stat_compare::{Comparison, Z_QUANTILES, compare, write_heat_map};
 use scratchwave_render::{Backend, Image, RenderError, render_scene, scene_file};
@@ -324,16 +324,10 @@ fn same_size(a: &Image, b: &Image, what: &str) -> Result<(), SpecError> {
     Ok(())
 }
 
-/// The floor of relative errors of a reference read from a file: [`FLOOR_FRACTION`] of
-/// the 99.9th percentile of the pixels' largest channel.
+/// The floor of relative errors of a reference read from a file
+/// ([`relative_error_floor`]).
 fn floor_of(mean: &Image) -> f64 {
-    let mut peaks: Vec<f64> = mean
-        .rgb
-        .iter()
-        .map(|p| p.iter().fold(0.0f64, |a, &b| a.max(f64::from(b).abs())))
-        .collect();
-    peaks.sort_by(f64::total_cmp);
-    FLOOR_FRACTION * quantile_sorted(&peaks, 0.999)
+    relative_error_floor(mean.rgb.iter().map(|p| p.map(f64::from)))
 }
 
 /// `scratchwave compare ANALYTIC.exr REFERENCE.exr [--out-dir DIR]`: prints the report,

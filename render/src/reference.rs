@@ -295,16 +295,7 @@ fn reference_with<Q: RayQueries + ?Sized>(
         progress(d, total, 1);
     });
     // The floor of the relative error: a fraction of the image's peak.
-    let mut peaks: Vec<f64> = tiles
-        .iter()
-        .flat_map(|px| {
-            px.iter()
-                .map(|p| p.2.mean.iter().fold(0.0f64, |a, &b| a.max(b.abs())))
-        })
-        .collect();
-    peaks.sort_by(f64::total_cmp);
-    let peak = quantile_sorted(&peaks, 0.999);
-    let floor = FLOOR_FRACTION * peak;
+    let floor = relative_error_floor(tiles.iter().flat_map(|px| px.iter().map(|p| p.2.mean)));
     // Phase 2: each pixel until its relative standard error reaches the target.
     let done = AtomicU64::new(0);
     tiles.par_iter_mut().for_each(|px| {
@@ -366,6 +357,18 @@ fn reference_with<Q: RayQueries + ?Sized>(
             floor,
         },
     }
+}
+
+/// The floor of relative errors in an image: [`FLOOR_FRACTION`] of the 99.9th percentile
+/// of the pixels' largest channel (`|value|`), so black and near-black pixels are measured
+/// by an absolute error.
+pub fn relative_error_floor(pixels: impl IntoIterator<Item = [f64; 3]>) -> f64 {
+    let mut peaks: Vec<f64> = pixels
+        .into_iter()
+        .map(|p| p.iter().fold(0.0f64, |a, &b| a.max(b.abs())))
+        .collect();
+    peaks.sort_by(f64::total_cmp);
+    FLOOR_FRACTION * quantile_sorted(&peaks, 0.999)
 }
 
 /// The `q`-quantile of sorted values (nearest rank; 0 when empty).
