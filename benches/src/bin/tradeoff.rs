@@ -305,29 +305,37 @@ fn reference(
     Ok(r)
 }
 
+/// A measured row's cells after the label: ms, build ms, relative RMSE, p99, shading
+/// evaluations, samples, coherent %, relative RMSE against `werner`; `precise` for the CSV
+/// (more digits), `missing` for an absent value.
+fn cells(m: &Measured, precise: bool, missing: &str) -> [String; 8] {
+    let opt = |x: Option<String>| x.unwrap_or_else(|| missing.to_string());
+    let (t, e) = if precise { (4, 6) } else { (2, 2) };
+    [
+        format!("{:.t$}", m.ms),
+        format!("{:.1$}", m.build_ms, if precise { 4 } else { 1 }),
+        format!("{:.e$e}", m.err.rel_rmse),
+        format!("{:.e$e}", m.err.p99),
+        opt(m.shading_evaluations.map(|v| v.to_string())),
+        opt(m.samples.map(|v| v.to_string())),
+        opt(m.coherent_pct.map(|p| format!("{p:.2}"))),
+        opt(m.vs_werner.map(|p| format!("{p:.e$e}"))),
+    ]
+}
+
 fn csv(rows: &[Row]) -> String {
     let mut s = String::from(
         "kind,variant,status,ms_per_frame,build_ms,rel_rmse,p99,shading_evaluations,samples,coherent_pct,rel_rmse_vs_werner\n",
     );
-    let opt = |x: Option<u64>| x.map(|v| v.to_string()).unwrap_or_default();
     for r in rows {
         match &r.result {
             Some(m) => {
                 let _ = writeln!(
                     s,
-                    "{},{},ok,{:.4},{:.4},{:.6e},{:.6e},{},{},{},{}",
+                    "{},{},ok,{}",
                     r.kind,
                     r.label,
-                    m.ms,
-                    m.build_ms,
-                    m.err.rel_rmse,
-                    m.err.p99,
-                    opt(m.shading_evaluations),
-                    opt(m.samples),
-                    m.coherent_pct
-                        .map(|p| format!("{p:.2}"))
-                        .unwrap_or_default(),
-                    m.vs_werner.map(|p| format!("{p:.6e}")).unwrap_or_default()
+                    cells(m, true, "").join(",")
                 );
             }
             None => {
@@ -471,25 +479,9 @@ fn print_table(args: &Args, w: u32, h: u32, threads: usize, backend: Backend, ro
         "| variant | ms/frame | build ms | rel. RMSE | p99 | shading evaluations | samples | coherent % | rel. RMSE vs werner |"
     );
     println!("|---|---|---|---|---|---|---|---|---|");
-    let opt = |x: Option<u64>| x.map(|v| v.to_string()).unwrap_or_else(|| "—".into());
     for r in rows {
         match &r.result {
-            Some(m) => println!(
-                "| {} | {:.2} | {:.1} | {:.2e} | {:.2e} | {} | {} | {} | {} |",
-                r.label,
-                m.ms,
-                m.build_ms,
-                m.err.rel_rmse,
-                m.err.p99,
-                opt(m.shading_evaluations),
-                opt(m.samples),
-                m.coherent_pct
-                    .map(|p| format!("{p:.1}"))
-                    .unwrap_or_else(|| "—".into()),
-                m.vs_werner
-                    .map(|p| format!("{p:.2e}"))
-                    .unwrap_or_else(|| "—".into())
-            ),
+            Some(m) => println!("| {} | {} |", r.label, cells(m, false, "—").join(" | ")),
             None => println!("| {} | failed | | | | | | | |", r.label),
         }
     }
