@@ -11,6 +11,15 @@ fn dir() -> PathBuf {
     d
 }
 
+/// A directory of its own for a test that writes images successfully: their temporary
+/// `.partial` files must not meet the "nothing left behind" checks of the tests that run
+/// beside it in [`dir`].
+fn out_dir(test: &str) -> PathBuf {
+    let d = dir().join(test);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
 /// Writes `scene` to `<name>.json` and runs `scratchwave render` on it with `args`.
 fn render(name: &str, scene: &str, args: &[&str]) -> (Output, PathBuf) {
     let path = dir().join(format!("{name}.json"));
@@ -70,8 +79,8 @@ fn no_partial_files(d: &Path) -> bool {
 
 #[test]
 fn good_scene_writes_exr_and_png_and_reports() {
-    let exr = dir().join("good.exr");
-    let png = dir().join("good.png");
+    let exr = out_dir("good").join("good.exr");
+    let png = out_dir("good").join("good.png");
     let (out, _) = render(
         "good",
         GOOD,
@@ -229,8 +238,8 @@ fn auto_model_writes_its_map_and_counts() {
         r#""model": "auto", "tolerance": 0.01"#,
         1,
     );
-    let exr = dir().join("auto.exr");
-    let map = dir().join("auto-map.png");
+    let exr = out_dir("auto").join("auto.exr");
+    let map = out_dir("auto").join("auto-map.png");
     let (out, _) = render(
         "auto",
         &auto,
@@ -254,8 +263,8 @@ fn auto_model_writes_its_map_and_counts() {
     assert!(c.iter().zip(i).all(|(a, b)| a + b == 1.0), "{c:?} {i:?}");
     assert!(std::fs::read(&map).unwrap().starts_with(b"\x89PNG"));
 
-    let exr = dir().join("no-auto.exr");
-    let map = dir().join("no-auto-map.png");
+    let exr = out_dir("no-auto").join("no-auto.exr");
+    let map = out_dir("no-auto").join("no-auto-map.png");
     let (out, _) = render(
         "no-auto",
         GOOD,
