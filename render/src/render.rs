@@ -10,6 +10,7 @@ use scratchwave_host::{Coherence, RayQueries};
 use scratchwave_kernel::bsdf::Lookup;
 use scratchwave_kernel::ray::Ray;
 use scratchwave_kernel::render::camera::Camera;
+use scratchwave_kernel::render::model_choice::hit_reach;
 use scratchwave_kernel::render::pixel::sample_offset;
 use scratchwave_kernel::render::radiance::{
     FirstRays, FrameParams, HitPoint, Occlusion, ShadeCounts, first_rays, hit_point, pixel_rgb,
@@ -274,6 +275,7 @@ fn render_tile<Q: RayQueries + ?Sized>(
             };
             let m = &prep.materials[hp.material as usize];
             let lk = Lookup::new(prep.scratch_set(hp.material as usize));
+            let reach = hit_reach(m, &lk, hp.sp.x_um, &hp.fp);
             for light in &prep.lights {
                 let f = &first[slot];
                 slot += 1;
@@ -288,6 +290,7 @@ fn render_tile<Q: RayQueries + ?Sized>(
                     m,
                     &lk,
                     hp,
+                    &reach,
                     light,
                     f,
                     bits,

@@ -47,6 +47,19 @@ impl SphericalPolygon {
         center: Vec3::Z,
     };
 
+    /// The half-angle of the cone about [`center`](Self::center) that contains the polygon:
+    /// the largest angle to a vertex (a polygon within a hemisphere has its farthest point
+    /// from an inside direction at a vertex).
+    pub fn half_angle(&self) -> f32 {
+        let mut half = 0.0f32;
+        let mut i = 0;
+        while i < self.count && i < MAX_VERTICES {
+            half = math::max(half, math::angle_between(self.center, self.vertex[i]));
+            i += 1;
+        }
+        half
+    }
+
     /// Projects `count` vertices (`xyz` of each `[f32; 4]`, relative to the shading point).
     /// `None` for fewer than 3 vertices, non-finite input, or a polygon entirely below the
     /// horizon.

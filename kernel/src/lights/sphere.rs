@@ -88,7 +88,7 @@ impl SphereCap {
         if self.alpha >= math::PI {
             return (-1.0, 1.0);
         }
-        let theta = math::atan2(u.cross(self.axis).length(), u.dot(self.axis));
+        let theta = math::angle_between(u, self.axis);
         let near = math::max(theta - self.alpha, 0.0);
         let far = math::min(theta + self.alpha, math::PI);
         (math::cos(far), math::cos(near))

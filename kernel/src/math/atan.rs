@@ -48,6 +48,13 @@ fn atan_unit(t: f32) -> (usize, f32) {
     (k, u + u * z * p)
 }
 
+/// The angle (radians, in `[0, π]`) between the non-zero vectors `a` and `b`:
+/// `atan2(|a × b|, a · b)`, accurate near 0 and π where `acos` of the dot product is not.
+#[inline]
+pub fn angle_between(a: glam::Vec3, b: glam::Vec3) -> f32 {
+    atan2(a.cross(b).length(), a.dot(b))
+}
+
 /// The angle of `(x, y)` in `[−π, π]`, as `libm::atan2f` (±0 and infinities included;
 /// NaN in, NaN out).
 #[inline]

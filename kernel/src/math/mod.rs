@@ -15,7 +15,7 @@ mod gauss_interval;
 mod si;
 mod trig_pi;
 
-pub use atan::{acos, asin, atan, atan2};
+pub use atan::{acos, angle_between, asin, atan, atan2};
 pub use bessel::bessel_i0e;
 pub use complex::{C32, cis, cmul_i, cscale, csqrt};
 pub use expm1::{expm1, ln1p};

@@ -35,10 +35,12 @@
 //! Everything here is a few comparisons and one walk over the scratches in reach without
 //! evaluating any of them.
 
-use super::area::{SceneLight, SceneLightKind};
+use super::area::SceneLight;
 use super::shading::{self, BaseKind, SceneModel, ShadeMaterial};
 use super::surface::SurfacePoint;
+use crate::bsdf::Lookup;
 use crate::footprint::Ellipse;
+use crate::lights::{LightKind, LightRegion};
 use crate::math;
 use crate::scratch::response::CUTOFF_SIGMAS;
 use crate::scratch::{EtaMode, NearCursor, ScratchSet};
@@ -110,6 +112,22 @@ pub fn reach<S: ScratchSet>(set: &S, x0: Vec2, sigma: f32, fp: &Ellipse) -> Reac
     out
 }
 
+/// The reach of a hit for the lights' choices: [`reach`] at the hit's scratch-space
+/// position and footprint for an `auto` material, empty (unused) for any other. Computed
+/// once per hit: it does not depend on the light.
+pub fn hit_reach<S: ScratchSet>(
+    m: &ShadeMaterial,
+    lk: &Lookup<'_, S>,
+    x_um: Vec2,
+    fp: &Ellipse,
+) -> Reach {
+    if SceneModel::from_u32(m.model) == SceneModel::Auto {
+        reach(&lk.scratches, x_um, m.table.sigma_um, fp)
+    } else {
+        Reach::default()
+    }
+}
+
 /// The record of Werner's coherent model with the same scratches, reflectance, depth phase
 /// and base: `werner` without a base, `werner_blended` with one.
 pub fn coherent(m: &ShadeMaterial) -> ShadeMaterial {
@@ -167,36 +185,14 @@ pub fn mirror_angle(sigma_um: f32, tolerance: f32, lambda_max_um: f32) -> f32 {
     lambda_max_um * math::sqrt(0.5 * math::ln(2.0 / t)) / (math::PI * sigma_um)
 }
 
-/// The angle between unit vectors `a` and `b` (accurate near 0).
-#[inline]
-fn angle(a: Vec3, b: Vec3) -> f32 {
-    math::atan2(a.cross(b).length(), a.dot(b))
-}
-
-/// A cone containing a sphere or triangle light seen from `p` (world frame): its axis and
-/// half-angle. `None` for a point at or inside the light, or a degenerate triangle.
-pub fn light_cone(light: &SceneLight, p: Vec3) -> Option<(Vec3, f32)> {
-    let v = |q: [f32; 4]| Vec3::new(q[0], q[1], q[2]) - p;
-    if SceneLightKind::from_u32(light.kind) == SceneLightKind::Sphere {
-        let c = v(light.p0);
-        let d = c.length();
-        let r = light.p0[3];
-        if !(d > r) {
-            return None;
-        }
-        return Some((c / d, math::asin(r / d)));
+/// The cone containing a light's region (shading frame): its axis and half-angle (a
+/// sphere's cap, or a polygon's vertex mean and its largest angle to a vertex).
+pub fn light_cone(region: &LightRegion) -> (Vec3, f32) {
+    if LightKind::from_u32(region.kind) == LightKind::Polygon {
+        (region.polygon.center, region.polygon.half_angle())
+    } else {
+        (region.sphere.axis, region.sphere.alpha)
     }
-    let (a, b, c) = (
-        v(light.p0).normalize_or_zero(),
-        v(light.p1).normalize_or_zero(),
-        v(light.p2).normalize_or_zero(),
-    );
-    let axis = (a + b + c).normalize_or_zero();
-    if axis == Vec3::ZERO {
-        return None;
-    }
-    let half = math::max(math::max(angle(axis, a), angle(axis, b)), angle(axis, c));
-    Some((axis, half))
 }
 
 /// The model of an `auto` material `m` for one light at the hit `sp` seen from `wo`
@@ -229,11 +225,13 @@ pub fn choose(
             Choice::Coherent
         };
     }
-    let Some((axis, half)) = light_cone(light, sp.position) else {
+    // Degenerate or wholly below the horizon: nothing is shaded; the coherent model.
+    let Some(region) = LightRegion::new(&shading::local_light(sp, light)) else {
         return Choice::Coherent;
     };
+    let (axis, half) = light_cone(&region);
     // How far the mirror direction lies outside the light's cone (negative inside).
-    let gap = angle(sp.to_local(axis), wm) - half;
+    let gap = math::angle_between(axis, wm) - half;
     if no_base && math::abs(gap) < near_mirror_limit {
         // Werner's base lobe straddles the light's edge; the closed form's mirror is a delta.
         return Choice::Coherent;

@@ -12,7 +12,7 @@
 use super::area::{self, SceneLight};
 use super::camera::{Camera, RayDifferential};
 use super::footprint::footprint_ellipse;
-use super::model_choice::{self, Choice};
+use super::model_choice::{self, Choice, Reach};
 use super::pixel::sample_offset;
 use super::shading::{self, SceneModel, ShadeMaterial};
 use super::spectrum::{self, SpectrumMode};
@@ -317,13 +317,15 @@ pub struct ShadeCounts {
 /// given its first rays and which of them are blocked (bit `k` of `first_blocked` for
 /// `first.rays[k]`). Further shadow rays (an area light in penumbra, or with
 /// [`ShadowMode::AllNodes`]) go to `occ` and are counted in `counts`; the first rays are
-/// the caller's to count.
+/// the caller's to count. `reach` is the hit's [`model_choice::hit_reach`] (the same for
+/// every light).
 #[allow(clippy::too_many_arguments)]
 pub fn shade_light<S: ScratchSet, O: Occlusion>(
     frame: &FrameParams,
     m: &ShadeMaterial,
     lk: &Lookup<'_, S>,
     hp: &HitPoint,
+    reach: &Reach,
     light: &SceneLight,
     first: &FirstRays,
     first_blocked: u32,
@@ -335,13 +337,12 @@ pub fn shade_light<S: ScratchSet, O: Occlusion>(
     // a fixed model. A copy, not a choice between references: rust-gpu cannot merge
     // pointers (an `OpPhi` of pointers needs the VariablePointers capability).
     let m = if SceneModel::from_u32(m.model) == SceneModel::Auto {
-        let reach = model_choice::reach(&lk.scratches, hp.sp.x_um, m.table.sigma_um, &hp.fp);
         let choice = model_choice::choose(
             m,
             &hp.sp,
             hp.wo,
             light,
-            &reach,
+            reach,
             frame.longest_wavelength_nm(),
         );
         if choice == Choice::Incoherent {
@@ -704,6 +705,7 @@ pub fn pixel_radiance<'a, T: Tracer, L: SceneScratches<'a>>(
         }
         let m = materials[mi];
         let lk = scratches.lookup(hp.material);
+        let reach = model_choice::hit_reach(&m, &lk, hp.sp.x_um, &hp.fp);
         let mut li = 0;
         while li < lights.len() {
             let light = lights[li];
@@ -723,6 +725,7 @@ pub fn pixel_radiance<'a, T: Tracer, L: SceneScratches<'a>>(
                 &m,
                 &lk,
                 &hp,
+                &reach,
                 &light,
                 &first,
                 blocked,
