@@ -372,8 +372,18 @@ fn read_mesh(o: &Obj, base_dir: &Path) -> Result<Shape, SpecError> {
                     format!("vertex {k} of mesh {:?} is not finite", m.name),
                 ));
             }
+            let uv = [mesh.texcoords[2 * k], mesh.texcoords[2 * k + 1]];
+            if !uv.iter().all(|x| x.is_finite()) {
+                return Err(SpecError::field(
+                    &fp,
+                    format!(
+                        "texture coordinate of vertex {k} of mesh {:?} is not finite",
+                        m.name
+                    ),
+                ));
+            }
             vertices.push(p);
-            uvs.push([mesh.texcoords[2 * k], mesh.texcoords[2 * k + 1]]);
+            uvs.push(uv);
         }
         for t in mesh.indices.chunks(3) {
             if t.len() == 3 {

@@ -164,3 +164,26 @@ fn face_indices_naming_no_element_are_rejected() {
     let s = scene_from_value_with_limit(&mesh_scene("ok.obj"), "t", &d, 1 << 30).unwrap();
     assert!(matches!(&s.objects[0].shape, Shape::Mesh { indices, .. } if indices.len() == 1));
 }
+
+#[test]
+fn texture_coordinates_that_overflow_are_rejected() {
+    // The `obj_mesh` fuzz finding: `vt 1e39 0` parses to an infinite f32 texture coordinate,
+    // which the scene reader took; it is refused like a non-finite position.
+    let d = dir("uv-overflow");
+    std::fs::write(
+        d.join("uv.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1e39 0\nvt 0 1\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let (path, msg) = field_error(scene_from_value_with_limit(
+        &mesh_scene("uv.obj"),
+        "t",
+        &d,
+        1 << 30,
+    ));
+    assert_eq!(path, "objects[0].file");
+    assert!(
+        msg.contains("texture coordinate") && msg.contains("not finite"),
+        "{msg}"
+    );
+}
