@@ -165,7 +165,13 @@ fn physical(r: &Records) {
         }
     }
     let v = light_integral(&lp, &light, &set);
-    let bound = light_bound(reflectance_bound(&light.material), lambda_nm, &scratches);
+    let bound = light_bound(
+        reflectance_bound(&light.material),
+        lambda_nm,
+        sigma,
+        lp.bands,
+        &scratches,
+    );
     check(v, bound, &|| {
         format!("light {lp:?} {light:?} {scratches:?}")
     });

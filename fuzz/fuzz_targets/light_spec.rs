@@ -3,7 +3,8 @@
 //! by `lights::light_integral` with the exact and with Eq. 29's Si. Every part must be
 //! finite and ≥ 0; within the physical domain of `kernel_raw` (σ in [10⁻², 10³] µm, λ in
 //! [300, 2000] nm, light positions within ±10³, sphere radii in [10⁻³, 10³], scratch
-//! width ≤ 100 µm) also at most the a-priori bound `8π F W² / λ²` of `scratchwave_fuzz`.
+//! width ≤ 100 µm) also at most the a-priori bound of `scratchwave_fuzz::light_bound` (the physical
+//! `8π F W² / λ²`, or the fixed band rules' own bound).
 //! The adaptive-quadrature reference column (testkit) is not run: it is slow by design.
 #![no_main]
 
@@ -47,7 +48,13 @@ fuzz_target!(|data: &[u8]| {
             for q in parts {
                 let v = light_integral(&params, q, &set);
                 let bound = if physical(params.sigma_um, spec.scratch.width, q) {
-                    light_bound(reflectance_bound(&q.material), q.lambda_nm, &scratches)
+                    light_bound(
+                        reflectance_bound(&q.material),
+                        q.lambda_nm,
+                        params.sigma_um,
+                        params.bands,
+                        &scratches,
+                    )
                 } else {
                     f64::INFINITY
                 };

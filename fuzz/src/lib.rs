@@ -10,7 +10,13 @@
 //!   `F/(πσ²λ²) (2πσ² + Σ_k 2W_k √(2π) σ)²` (F ≤ 1 the reflectance, λ in µm).
 //! * **Light integrals** (incoherent model): the integrand is at most
 //!   `F/(πσ²λ²) Σ_k |S_k|² ≤ F/(πσ²λ²) Σ_k 8πW_k²σ²` and `∫ cosθ dω ≤ π` over any light, so
-//!   the integral is at most `8π F Σ_k W_k² / λ²`.
+//!   the integral is at most `8π F Σ_k W_k² / λ²`. That physical bound holds for the extent
+//!   rule, which integrates only the ξ₁ the light covers. The fixed band rules (Velinov
+//!   Eq. 27's single band, Gauss–Hermite) weight chords by the *whole* Gaussian across ξ₁
+//!   (`∫|η|² dξ₁ ≤ √π σ W²`) and a chord is at most `4·2/λ` (`|M − P|² ≤ 4W²` over a ξ₂ span
+//!   ≤ 2/λ), so they are bounded by `8 F Σ_k W_k² / (√π σ λ)` instead — larger than the
+//!   physical bound by `λ/(π^{3/2} σ)` when the Gaussian is wider than the visible disk
+//!   (σ < λ/π^{3/2}), where Eq. 27 over-counts by design (see `lights::BandRule`).
 //! * **Footprint averages** (as in `kernel/tests/stability.rs`): the accurate
 //!   `(1/A_P)∫|η_s|² ≤ 2πσ²`; Eq. 16 ≤ `max(Eq. 15, 2πσ²)`; the accurate ρ_P ≤
 //!   `W/(√(2π)σ)`.
@@ -18,6 +24,7 @@
 //! All bounds are evaluated in f64 and allowed a relative slack of [`SLACK`] for the kernel's
 //! f32 rounding.
 
+use scratchwave_kernel::lights::BandRule;
 use scratchwave_kernel::material::{Material, MaterialKind};
 use scratchwave_kernel::scratch::Scratch;
 use std::f64::consts::PI;
@@ -43,14 +50,28 @@ pub fn table_bound(f: f64, sigma_um: f32, lambda_nm: f32, scratches: &[Scratch])
     f * amp * amp / (PI * s * s * lam * lam) * (1.0 + SLACK)
 }
 
-/// The light-integral bound `8π F Σ W² / λ²` (λ in nm).
-pub fn light_bound(f: f64, lambda_nm: f32, scratches: &[Scratch]) -> f64 {
+/// The light-integral bound (λ in nm, σ in µm) for the band rule `bands`
+/// ([`LightParams::bands`](scratchwave_kernel::lights::LightParams)): `8π F Σ W² / λ²` for
+/// the extent rule, the larger of that and `8 F Σ W² / (√π σ λ)` for the fixed rules.
+pub fn light_bound(
+    f: f64,
+    lambda_nm: f32,
+    sigma_um: f32,
+    bands: u32,
+    scratches: &[Scratch],
+) -> f64 {
     let lam = f64::from(lambda_nm) * 1.0e-3;
     let sum_w2: f64 = scratches
         .iter()
         .map(|k| f64::from(k.width) * f64::from(k.width))
         .sum();
-    8.0 * PI * f * sum_w2 / (lam * lam) * (1.0 + SLACK)
+    let physical = 8.0 * PI * f * sum_w2 / (lam * lam);
+    let bound = if BandRule::from_u32(bands) == BandRule::Extent {
+        physical
+    } else {
+        physical.max(8.0 * f * sum_w2 / (PI.sqrt() * f64::from(sigma_um) * lam))
+    };
+    bound * (1.0 + SLACK)
 }
 
 /// Asserts `v` is finite, non-negative and at most `bound`.

@@ -176,3 +176,88 @@ fn a_million_configurations_are_finite_and_non_negative() {
     println!("{lit} of {n} configurations lit");
     assert!(lit > n / 10, "the sweep must exercise lit bands, got {lit}");
 }
+
+/// The `kernel_raw` fuzz finding: at σ = 0.0105 µm ≪ λ = 1.755 µm the band's Gaussian
+/// across ξ₁ (standard deviation `λ/(2√2πσ)` ≈ 19 in direction cosines) is far wider than the
+/// visible disk, and the single band (Velinov Eq. 27) counts all of its mass where the light
+/// meets ξ₁ = 0. That is the approximation's known failure (see `BandRule`): it exceeds the
+/// physical bound `8πFΣW²/λ²` here, but stays within its own a-priori bound
+/// `8FΣW²/(√π σ λ)` (whole Gaussian, chord ≤ 2/λ); the extent rule, which integrates only
+/// the ξ₁ the light covers, stays within the physical bound.
+#[test]
+fn single_band_beyond_its_domain_stays_within_its_own_bound() {
+    let garbage = 1_701_143_909;
+    let scratches = [
+        Scratch {
+            center: [-99234.07, -100000.0],
+            tangent: [1.0, 0.0],
+            half_len: 0.0,
+            width: 0.0,
+            depth: 0.0,
+            profile: 1_073_741_825,
+        },
+        Scratch {
+            center: [-99747.26, 25140.082],
+            tangent: [0.9996988, 0.024541695],
+            half_len: 0.0,
+            width: 0.017190723,
+            depth: 0.0015021053,
+            profile: 1_010_580_540,
+        },
+        Scratch {
+            center: [-52941.176, -52941.152],
+            tangent: [0.09226836, 0.99573416],
+            half_len: 7.798367,
+            width: 0.28247523,
+            depth: 7.7162833,
+            profile: 4_210_752_250,
+        },
+    ];
+    let set = ScratchSlice {
+        scratches: &scratches,
+    };
+    let q = LightQuery {
+        wo: [0.57872975, 0.5766593, 0.5766593],
+        lambda_nm: 1755.116,
+        x: [-52941.176, -52941.176],
+        pad: [0.0; 2],
+        material: Material {
+            kind: 4_198_251_645,
+            fresnel_angle: 4_210_752_250,
+            f: 1.17812306e-7,
+            n: 0.05,
+            k: 19.607841,
+            pad: [0; 3],
+        },
+        light: Light {
+            kind: 2_256_963_072,
+            cone: 34438,
+            ..Light::sphere([-1000.0, -992.3407, 960.7843], 762.6986, Cone::Asin)
+        },
+    };
+    let sigma = 0.010459989f32;
+    let lambda = 1.755116f64;
+    let sum_w2: f64 = scratches.iter().map(|s| f64::from(s.width).powi(2)).sum();
+    // F ≤ 1 (the unknown kind falls back to a Fresnel conductor).
+    let physical = 8.0 * std::f64::consts::PI * sum_w2 / (lambda * lambda);
+    let own = 8.0 * sum_w2 / (std::f64::consts::PI.sqrt() * f64::from(sigma) * lambda);
+    let params = |bands: u32| LightParams {
+        sigma_um: sigma,
+        eta: garbage,
+        depth_term: garbage,
+        si_mode: garbage,
+        bands,
+        pad: [garbage; 3],
+    };
+    let single = f64::from(light_integral(&params(garbage), &q, &set));
+    assert!(
+        single > physical && single <= own * 1.001,
+        "single band {single}: physical bound {physical}, own bound {own}"
+    );
+    let extent = f64::from(light_integral(&params(20), &q, &set));
+    assert!(
+        extent.is_finite() && extent > 0.0 && extent <= physical * 1.001,
+        "extent rule {extent}: physical bound {physical}"
+    );
+    println!("single {single:.4} extent {extent:.4} physical {physical:.4} own {own:.4}");
+}
