@@ -213,7 +213,7 @@ fn shade_of(m: &BsdfMaterial) -> ShadeMaterial {
         model: m.model,
         base: m.base,
         tolerance: 0.0,
-        pad: 0,
+        light_method: 0,
     }
 }
 

@@ -4,7 +4,7 @@
 use scratchwave_kernel::ghs::layers::LayerForm;
 use scratchwave_kernel::ghs::{DiffColor, Layer};
 use scratchwave_kernel::gpu_enum::UnknownVariant;
-use scratchwave_kernel::lights::{BandRule, Cone, LightKind, SiMode};
+use scratchwave_kernel::lights::{BandRule, Cone, LightKind, LightMethod, SiMode};
 use scratchwave_kernel::material::{FresnelAngle, MaterialKind};
 use scratchwave_kernel::render::area::SceneLightKind;
 use scratchwave_kernel::render::camera::Projection;
@@ -131,6 +131,39 @@ fn every_gpu_enum_round_trips_and_rejects_unknown_codes() {
         ],
         BandRule::Single,
         BandRule::from_u32,
+    );
+    check(
+        "LightMethod",
+        &[
+            LightMethod::Extent,
+            LightMethod::Eq27,
+            LightMethod::Eq27Eq29,
+            LightMethod::Hermite3,
+            LightMethod::Hermite5,
+        ],
+        LightMethod::Extent,
+        LightMethod::from_u32,
+    );
+    // What each method asks of the light integral.
+    let rules: Vec<(BandRule, SiMode)> = [
+        LightMethod::Extent,
+        LightMethod::Eq27,
+        LightMethod::Eq27Eq29,
+        LightMethod::Hermite3,
+        LightMethod::Hermite5,
+    ]
+    .iter()
+    .map(|m| (m.band_rule(), m.si_mode()))
+    .collect();
+    assert_eq!(
+        rules,
+        [
+            (BandRule::Extent, SiMode::Exact),
+            (BandRule::Single, SiMode::Exact),
+            (BandRule::Single, SiMode::Velinov),
+            (BandRule::Hermite3, SiMode::Exact),
+            (BandRule::Hermite5, SiMode::Exact),
+        ]
     );
     check(
         "SiMode",

@@ -5,6 +5,7 @@
 use crate::error::SpecError;
 use crate::json::Obj;
 use crate::spec;
+use scratchwave_kernel::lights::LightMethod;
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::render::shading::{BaseKind, SceneModel, ShadeMaterial};
 use scratchwave_kernel::scratch::DepthTerm;
@@ -16,6 +17,15 @@ use std::path::Path;
 /// The `tolerance` of an `auto` material that gives none.
 pub const DEFAULT_TOLERANCE: f32 = 0.01;
 
+/// The `"light_integral"` names of [`LightMethod`] (default `extent`).
+pub const LIGHT_METHODS: [(&str, LightMethod); 5] = [
+    ("extent", LightMethod::Extent),
+    ("eq27", LightMethod::Eq27),
+    ("eq27_eq29", LightMethod::Eq27Eq29),
+    ("hermite3", LightMethod::Hermite3),
+    ("hermite5", LightMethod::Hermite5),
+];
+
 /// A material as read: the kernel record and its scratches (µm of scratch space).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MaterialSpec {
@@ -26,11 +36,14 @@ pub struct MaterialSpec {
 }
 
 /// `{"model": "werner" | "werner_blended" | "velinov" | "auto" | "ghs", "sigma_um",
-/// "material", "options", "scratches", "base", "tolerance"}` at JSON path `path`. The depth
+/// "material", "options", "scratches", "base", "tolerance", "light_integral"}` at JSON path
+/// `path`. The depth
 /// term defaults to each paper's (exact for `werner`, `werner_blended` and `auto`,
 /// small-angle for `velinov`); `options.depth_term` overrides it. `tolerance` (model
 /// `auto` only, in (0, 1), default [`DEFAULT_TOLERANCE`]) bounds the relative error the
-/// model choice may add (`kernel::render::model_choice`). Scratch files are read relative to
+/// model choice may add (`kernel::render::model_choice`). `light_integral` (`velinov` and
+/// `auto` only, one of [`LIGHT_METHODS`]) picks how the incoherent model integrates area
+/// lights. Scratch files are read relative to
 /// `base_dir`; at most `budget` scratch segments are accepted.
 pub fn scene_material(
     v: &Value,
@@ -49,6 +62,7 @@ pub fn scene_material(
             "scratches",
             "base",
             "tolerance",
+            "light_integral",
         ],
     )?;
     let model = m.choice(
@@ -64,7 +78,14 @@ pub fn scene_material(
     let mut shade = ShadeMaterial::default();
     let mut scratches = Vec::new();
     if model == "ghs" {
-        for key in ["sigma_um", "options", "scratches", "base", "tolerance"] {
+        for key in [
+            "sigma_um",
+            "options",
+            "scratches",
+            "base",
+            "tolerance",
+            "light_integral",
+        ] {
             if m.get(key).is_some() {
                 return Err(SpecError::field(
                     m.path_of(key),
@@ -94,6 +115,17 @@ pub fn scene_material(
             }
             None => DEFAULT_TOLERANCE,
         };
+    }
+    if let Some(name) = m.opt_choice("light_integral", &LIGHT_METHODS.map(|(n, _)| n))? {
+        if !matches!(sm, SceneModel::Velinov | SceneModel::Auto) {
+            return Err(SpecError::field(
+                m.path_of("light_integral"),
+                "only meaningful for the incoherent model (\"velinov\", or \"auto\" where it \
+                 chooses it): the coherent models integrate area lights by quadrature",
+            ));
+        }
+        let method = LIGHT_METHODS.iter().find(|(n, _)| *n == name);
+        shade.light_method = method.map_or(LightMethod::Extent, |(_, m)| *m) as u32;
     }
     shade.material = match m.get("material") {
         Some(x) => spec::material(x, &m.path_of("material"))?,

@@ -10,6 +10,7 @@
 //! | `sphere` | sphere cone (`asin` true, `atan` Eq. 31), its crossings (Eqs. 30–35) |
 //! | `polygon` | spherical polygons, their crossings (Eqs. 36–41) |
 //! | `integrate` | `Pod` records and [`light_integral`] |
+//! | `method` | [`LightMethod`]: a scene material's band rule and Si |
 //! | `limits` | capacities of the fixed-size lists |
 
 pub mod band;
@@ -17,6 +18,7 @@ pub mod band_circle;
 pub mod horizon;
 pub mod integrate;
 pub mod limits;
+pub mod method;
 pub mod polygon;
 pub mod si_fast;
 pub mod sphere;
@@ -27,6 +29,7 @@ pub use integrate::{
     light_integral_footprint, light_integrals, light_integrals_in,
 };
 pub use limits::{MAX_BREAKPOINTS, MAX_VERTICES};
+pub use method::LightMethod;
 pub use polygon::SphericalPolygon;
 pub use si_fast::si_fast;
 pub use sphere::{Cone, SphereCap};

@@ -21,7 +21,7 @@ use crate::bsdf::{self, BsdfMaterial, Lookup, ShadingPoint, Spectrum, Wavelength
 use crate::footprint::Ellipse;
 use crate::ghs::GhsParams;
 use crate::lights::{
-    BandRule, Cone, Light, LightParams, LightRegion, MAX_LAMBDAS, SiMode, light_integrals_in,
+    Cone, Light, LightMethod, LightParams, LightRegion, MAX_LAMBDAS, light_integrals_in,
 };
 use crate::material::Material;
 use crate::math;
@@ -80,8 +80,9 @@ pub struct ShadeMaterial {
     pub base: u32,
     /// [`SceneModel::Auto`]: the relative error the model choice may add (0 otherwise).
     pub tolerance: f32,
-    /// Explicit padding.
-    pub pad: u32,
+    /// A [`LightMethod`] as `u32`: how the incoherent model integrates area lights
+    /// (`velinov`, and `auto` where it chooses the incoherent model).
+    pub light_method: u32,
 }
 
 const _: () = assert!(core::mem::size_of::<ShadeMaterial>() == 128);
@@ -287,8 +288,9 @@ pub fn local_light(sp: &SurfacePoint, light: &SceneLight) -> Light {
 
 /// Velinov's model under a sphere or triangle light, unoccluded, at the first `count` of
 /// `lambdas_nm` (one scratch walk): the closed-form scratch integral ([`light_integrals_in`],
-/// Velinov Eqs. 19–41, extent band rule, exact Si) times the radiance, plus the mirror
-/// part of a smooth or Gaussian base (the same at every wavelength). With a footprint
+/// Velinov Eqs. 19–41, band rule and Si from [`ShadeMaterial::light_method`]) times the
+/// radiance, plus the mirror part of a smooth or Gaussian base (the same at every
+/// wavelength). With a footprint
 /// (`fp.a1 > 0`, centred on the shading point) each scratch's spatial factor is averaged
 /// over it (Velinov §4) and the mirror base is weighted by `1 − ρ_P`
 /// ([`footprint_density`], Velinov Eq. 18); `fp.a1 = 0` is the point model. A GHS base is
@@ -305,12 +307,13 @@ pub fn velinov_area_light<S: ScratchSet>(
 ) -> [f32; MAX_LAMBDAS] {
     let set = &lk.scratches;
     let kl = local_light(sp, light);
+    let method = LightMethod::from_u32(m.light_method);
     let params = LightParams {
         sigma_um: m.table.sigma_um,
         eta: m.table.eta,
         depth_term: m.table.depth_term,
-        si_mode: SiMode::Exact as u32,
-        bands: BandRule::Extent as u32,
+        si_mode: method.si_mode() as u32,
+        bands: method.band_rule() as u32,
         pad: [0; 3],
     };
     let Some(region) = LightRegion::new(&kl) else {
