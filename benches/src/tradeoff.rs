@@ -10,8 +10,12 @@ use serde_json::{Map, Value};
 pub enum Variant {
     /// Werner 2017's coherent sum (`werner`, or `werner_blended` with a smooth or GHS base).
     Werner,
-    /// Velinov's incoherent sum with Werner's exact depth phase.
+    /// Velinov's incoherent sum with Werner's exact depth phase (area lights by the extent
+    /// rule, the scene reader's default).
     Velinov,
+    /// [`Variant::Velinov`] with this `"light_integral"` (a name of
+    /// `scratchwave_spec::material::LIGHT_METHODS`).
+    VelinovLight(String),
     /// `"model": "auto"` with this `"tolerance"`; `text` is the tolerance as written.
     Auto {
         /// The tolerance.
@@ -27,6 +31,7 @@ impl Variant {
         match self {
             Variant::Werner => "werner".into(),
             Variant::Velinov => "velinov".into(),
+            Variant::VelinovLight(m) => format!("velinov:{m}"),
             Variant::Auto { text, .. } => format!("auto:{text}"),
         }
     }
@@ -37,7 +42,8 @@ impl Variant {
     }
 }
 
-/// Parses `werner,velinov,auto:0.01`: each name once, tolerances finite and > 0.
+/// Parses `werner,velinov,velinov:eq27,auto:0.01`: each name once, tolerances finite and
+/// > 0, `velinov:M` with M a `"light_integral"` name.
 pub fn parse_variants(s: &str) -> Result<Vec<Variant>, String> {
     let mut out: Vec<Variant> = Vec::new();
     for item in s.split(',') {
@@ -45,6 +51,17 @@ pub fn parse_variants(s: &str) -> Result<Vec<Variant>, String> {
         let v = match item {
             "werner" => Variant::Werner,
             "velinov" => Variant::Velinov,
+            _ if item.starts_with("velinov:") => {
+                let m = &item["velinov:".len()..];
+                let names = scratchwave_spec::material::LIGHT_METHODS.map(|(n, _)| n);
+                if !names.contains(&m) {
+                    return Err(format!(
+                        "{item:?}: unknown light integral (expected one of {})",
+                        names.join(", ")
+                    ));
+                }
+                Variant::VelinovLight(m.to_string())
+            }
             _ => match item.strip_prefix("auto:") {
                 Some(t) => {
                     let tolerance: f64 = t
@@ -60,7 +77,7 @@ pub fn parse_variants(s: &str) -> Result<Vec<Variant>, String> {
                 }
                 None => {
                     return Err(format!(
-                        "unknown variant {item:?} (expected werner, velinov or auto:T)"
+                        "unknown variant {item:?} (expected werner, velinov, velinov:M or auto:T)"
                     ));
                 }
             },
@@ -123,7 +140,7 @@ pub struct Args {
 }
 
 /// The usage line.
-pub const USAGE: &str = "usage: tradeoff SCENE.json [--variants werner,velinov,auto:0.1,auto:0.01,auto:0.001] \
+pub const USAGE: &str = "usage: tradeoff SCENE.json [--variants werner,velinov,velinov:eq27,velinov:eq27_eq29,velinov:hermite3,auto:0.1,auto:0.01,auto:0.001] \
 [--reference-spp 16,64,256,1024] [--truth-spp 4096] [--repeats 3] [--backend embree|cpu] \
 [--out-dir docs/tradeoff] [--name NAME]";
 
@@ -133,7 +150,7 @@ pub fn parse_args(args: &[String]) -> Result<Args, (String, String)> {
     let mut seen: Vec<&str> = Vec::new();
     let mut a = Args {
         scene: String::new(),
-        variants: parse_variants("werner,velinov,auto:0.1,auto:0.01,auto:0.001")
+        variants: parse_variants("werner,velinov,velinov:eq27,velinov:eq27_eq29,velinov:hermite3,auto:0.1,auto:0.01,auto:0.001")
             .expect("default variants"),
         reference_spp: vec![16, 64, 256, 1024],
         truth_spp: 4096,
@@ -247,6 +264,7 @@ fn is_real_base(b: &Value) -> bool {
 ///   any base. `options.eta` and `options.base` removed, `options.depth_term = "exact"`.
 /// * `velinov`: `options.depth_term = "exact"` (Werner's depth phase); a smooth or GHS base
 ///   kept at the top level, otherwise `options.base = "gaussian"`.
+/// * `velinov:M`: as `velinov`, with `"light_integral": M`.
 /// * `auto:T`: `"model": "auto"`, `"tolerance": T`, everything else as written.
 ///
 /// `tolerance` is removed by `werner` and `velinov`.
@@ -278,6 +296,10 @@ fn rewrite_material(obj: &mut Map<String, Value>, variant: &Variant) {
         return;
     }
     obj.remove("tolerance");
+    obj.remove("light_integral");
+    if let Variant::VelinovLight(m) = variant {
+        obj.insert("light_integral".into(), Value::from(m.as_str()));
+    }
     let mut options = match obj.remove("options") {
         Some(Value::Object(o)) => o,
         _ => Map::new(),
@@ -460,6 +482,20 @@ mod tests {
     }
 
     #[test]
+    fn velinov_light_sets_the_light_integral_and_werner_drops_it() {
+        let vs = parse_variants("velinov:eq27_eq29,werner").unwrap();
+        assert_eq!(vs[0].label(), "velinov:eq27_eq29");
+        let (v, _) = rewrite(&scene(), &vs[0]).unwrap();
+        let p = mat(&v, "plain");
+        assert_eq!(p["model"], "velinov");
+        assert_eq!(p["light_integral"], "eq27_eq29");
+        let (w, _) = rewrite(&v, &vs[1]).unwrap();
+        assert!(mat(&w, "plain").get("light_integral").is_none());
+        let e = parse_variants("velinov:eq28").unwrap_err();
+        assert!(e.contains("hermite5"), "{e}");
+    }
+
+    #[test]
     fn rel_rmse_and_p99() {
         let r: Vec<[f32; 3]> = (0..100).map(|k| [k as f32, 1.0, 2.0]).collect();
         let f = floor_of(&r);
@@ -483,7 +519,8 @@ mod tests {
     #[test]
     fn committed_scenes_read_in_every_variant() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/tradeoff");
-        let variants = parse_variants("werner,velinov,auto:0.1,auto:0.001").unwrap();
+        let variants =
+            parse_variants("werner,velinov,velinov:eq27_eq29,auto:0.1,auto:0.001").unwrap();
         for name in ["velinov_benchmark", "werner_closeup", "ghs_scratches"] {
             let text = std::fs::read_to_string(dir.join(format!("{name}.json"))).unwrap();
             let v: Value = serde_json::from_str(&text).unwrap();
@@ -501,7 +538,7 @@ mod tests {
         let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
         let a = parse_args(&s(&["x/scene.json"])).unwrap();
         assert_eq!(a.name, "scene");
-        assert_eq!(a.variants.len(), 5);
+        assert_eq!(a.variants.len(), 8);
         assert_eq!(
             parse_args(&s(&["s.json", "--truth-spp", "10"]))
                 .unwrap_err()

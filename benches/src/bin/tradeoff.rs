@@ -1,7 +1,7 @@
 //! Speed against accuracy of the scratch models on one scene (`docs/tradeoff.md`).
 //!
 //! ```text
-//! tradeoff SCENE.json [--variants werner,velinov,auto:0.1,auto:0.01,auto:0.001]
+//! tradeoff SCENE.json [--variants werner,velinov,velinov:eq27,velinov:eq27_eq29,velinov:hermite3,auto:0.1,auto:0.01,auto:0.001]
 //!          [--reference-spp 16,64,256,1024] [--truth-spp 4096] [--repeats 3]
 //!          [--backend embree|cpu] [--out-dir docs/tradeoff] [--name NAME]
 //! ```
