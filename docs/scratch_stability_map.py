@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Stability map of the scratch models (issue #20): worst err/bound of the f32 kernel over
 (groove depth, min(cos theta_i, cos theta_o)) and (sigma, groove width), for Werner's coherent
-model (rect and triangle) and Velinov's point model, before and after the issue #20 fixes, as
-docs/scratch-stability.svg.
+model (rect and triangle), Velinov's point model and Werner's model blended with a base
+(family werner_blended), before and after the issue #20 fixes, as docs/scratch-stability.svg
+(werner_blended was added to the sweep after the fixes: its "before" panels are empty).
 
 err is the kernel's relative error against the mpmath reference at the same f32 inputs
 (reference/scratch_sweep.py, committed subset reference/golden/sweep/), bound =
@@ -40,11 +41,13 @@ MAPS = [
     ("depth_cos", "depth × cosθ", "depth", (-3.0, 1.0, 12), "depth D (µm)", "cos", (math.log10(0.005), 0.0, 10), "min(cosθi, cosθo)"),
     ("sigma_width", "σ × width", "sigma", (0.0, 2.0, 10), "σ (µm)", "width", (-1.0, math.log10(50), 12), "width W (µm)"),
 ]
-GROUPS = [("werner", "Werner Eq. 15 (rect + triangle)"), ("velinov", "Velinov Eq. 7")]
+GROUPS = [("werner", "Werner Eq. 15 (rect + triangle)"), ("velinov", "Velinov Eq. 7"),
+          ("werner_blended", "Werner §5 |S|² + (1 − ρc) base")]
 
 
 def group_of(family):
-    return "velinov" if family == "velinov" else "werner"
+    """The map group of a sweep family (werner_rect and werner_tri share one)."""
+    return family if family in ("velinov", "werner_blended") else "werner"
 
 
 def grid(rows):
@@ -108,8 +111,9 @@ def draw(before, after, path):
         for col, (name, g) in enumerate((("before (cf41449)", before), ("after", after))):
             x0 = left + col * (pw + gapx)
             y0 = top + row * (ph + gapy) + 14
-            worst = max((v[0] for k, v in g.items() if k[0] == grp and k[1] == key), default=0)
-            out.append('<text x="%d" y="%d" font-size="12">%s, %s: worst %.3g</text>' % (x0, y0 - 4, glabel, name, worst))
+            cells = [v[0] for k, v in g.items() if k[0] == grp and k[1] == key]
+            status = "worst %.3g" % max(cells) if cells else "not swept then"
+            out.append('<text x="%d" y="%d" font-size="12">%s, %s: %s</text>' % (x0, y0 - 4, glabel, name, status))
             for ix in range(xa[2]):
                 for iy in range(ya[2]):
                     v = g.get((grp, key, ix, iy))

@@ -31,6 +31,11 @@ Families (files `reference/golden/sweep/<family>.csv`):
                finite (Werner App. A) or infinite (Velinov Eq. 8) eta, rect and triangle
   werner_rect  Werner Eq. 15 F/(pi s^2 l^2) |B - S|^2, rectangular grooves
   werner_tri   the same with triangular grooves (Eqs. 29-31 corrected)
+  werner_blended  Werner Sec. 5: F/(pi s^2 l^2) |S|^2 + max(1 - rho_c, 0) f_base, both profiles,
+               base none (table::evaluate), smooth (a delta: adds nothing to the value) or
+               GHS (H&P 2016, reference/ghs/domain_sweep.py's mpmath BRDF, all its inputs
+               nudged too); widths scaled so that rho_c (corrected Velinov Eq. 17) at x lands
+               near 0, in between, near 1 or just above 1 (where the base weight clamps to 0)
 
 Domain (the issue's): sigma 1-100 um, W 0.1-50 um, D 0.001-10 um, lambda 360-830 nm, cosines
 down to 0.005, x on top of a scratch (|s_b| < W/2), near it, and up to 5.9 sigma away
@@ -39,11 +44,13 @@ the segment's span and beyond its ends; half lengths 1e-3 sigma to 1e4 um; xi ne
 direction, along a scratch's diffraction line (xi1 ~ 0) and anywhere.
 
 Usage:
-  python3 reference/scratch_sweep.py                   # the committed subset (3 x 1 200 queries, ~10 min on one core)
-  python3 reference/scratch_sweep.py --full --out DIR  # 3 x 100 000 queries (the full sweep)
+  python3 reference/scratch_sweep.py                   # the committed subset (4 x 1 200 queries, ~16 min on one core)
+  python3 reference/scratch_sweep.py --full --out DIR  # 4 x 100 000 queries (the full sweep)
   python3 reference/scratch_sweep.py --check           # self-checks of the reference only
   SCRATCH_SWEEP_DIR=DIR cargo test --release -p scratchwave-kernel --test scratch_domain_sweep -- --nocapture
 The subset is a prefix of the full sweep (same seeds, rows drawn one after another).
+--jobs 1 (the default) evaluates in this process; --jobs N > 1 uses a Pool of N workers.
+The werner_blended family's GHS base needs numpy (reference/ghs/domain_sweep.py).
 """
 import argparse
 import csv
@@ -63,9 +70,9 @@ import refcore as rc  # noqa: E402
 
 OUT = os.path.join(HERE, "golden", "sweep")
 
-COUNTS = dict(velinov=1200, werner_rect=1200, werner_tri=1200)
+COUNTS = dict(velinov=1200, werner_rect=1200, werner_tri=1200, werner_blended=1200)
 FULL_COUNT = 100_000
-SEEDS = dict(velinov=3001, werner_rect=3002, werner_tri=3003)
+SEEDS = dict(velinov=3001, werner_rect=3002, werner_tri=3003, werner_blended=3004)
 
 SIGMA = (1.0, 100.0)
 WIDTH = (0.1, 50.0)
@@ -202,6 +209,95 @@ def scratch(rng, x0, sigma, profile):
     return dict(cx=c[0], cy=c[1], tx=tx, ty=ty, h=h, w=w, d=d, profile=profile)
 
 
+def rho_approx(scr, x0, sigma):
+    """rho_c at x0 in float64 (corrected Velinov Eq. 17, erf form): only to steer the draw."""
+    tot = 0.0
+    for s in scr:
+        dx, dy = s["cx"] - x0[0], s["cy"] - x0[1]
+        st = dx * s["tx"] + dy * s["ty"]
+        sb = -dx * s["ty"] + dy * s["tx"]
+        r2 = math.sqrt(2) * sigma
+        g = math.erf((st + s["h"]) / r2) - math.erf((st - s["h"]) / r2)
+        tot += s["w"] * math.exp(-sb * sb / (2 * sigma * sigma)) * sigma * math.sqrt(math.pi / 2) * g
+    return tot / (2 * math.pi * sigma * sigma)
+
+
+def steer_rho(rng, scr, x0, sigma):
+    """werner_blended: scale every width so that rho_c at x0 lands near 0, in between, near 1
+    or just above 1 (widths stay within WIDTH; a clipped width misses the target)."""
+    u = rng.random()
+    if u < 0.2:
+        return  # as drawn
+    if u < 0.4:
+        target = loguni(rng, 1e-6, 1e-2)
+    elif u < 0.65:
+        target = rng.uniform(0.05, 0.95)
+    else:
+        d = loguni(rng, 1e-6, 0.1)
+        target = 1 - d if rng.random() < 0.75 else 1 + d
+        # x0 within 0.3 sigma across scratch 0 and inside its span (rho_c ~ 1 needs W ~ 2.5 sigma)
+        s0 = scr[0]
+        st, sb = rng.uniform(-1, 1) * s0["h"], rng.uniform(-0.3, 0.3) * sigma
+        s0["cx"] = x0[0] + st * s0["tx"] - sb * s0["ty"]
+        s0["cy"] = x0[1] + st * s0["ty"] + sb * s0["tx"]
+    rho = rho_approx(scr, x0, sigma)
+    if rho > 0:
+        k = target / rho
+        for s in scr:
+            s["w"] = min(max(s["w"] * k, WIDTH[0]), WIDTH[1])
+
+
+# GHS base of werner_blended: reference/ghs/domain_sweep.py's domain (docs/ghs.md)
+GHS_STRATA = [  # (layer, layer_form, ior kind), as the GHS sweep's brdf family
+    (0, 0, 0), (0, 0, 1), (0, 0, 2), (1, 0, 1), (1, 1, 1), (2, 0, 1), (2, 1, 1), (0, 0, 0),
+]
+GHS_KEYS = ("sigma_s", "beta", "p", "b", "c", "n", "k", "albedo")
+
+
+def ghs_params(rng):
+    """GHS parameters (float32) drawn as reference/ghs/domain_sweep.py's brdf family does."""
+    lay, form, ik = GHS_STRATA[rng.randrange(len(GHS_STRATA))]
+    beta, p = loguni(rng, 1e-3, 0.5), loguni(rng, 0.3, 3.0)
+    b = loguni(rng, 0.01, 100.0)
+    if ik == 0:
+        n, k = loguni(rng, 0.03, 3.0), loguni(rng, 0.5, 10.0)
+    elif ik == 1:
+        n, k = (1 + loguni(rng, 1e-3, 5e-2) if rng.random() < 0.15 else loguni(rng, 1.05, 3.0)), 0.0
+    else:
+        n, k = loguni(rng, 1.05, 3.0), loguni(rng, 1e-4, 0.3)
+    if lay:
+        n = loguni(rng, 1.05, 2.5) if rng.random() < 0.9 else 1 + loguni(rng, 1e-3, 5e-2)
+    g = dict(sigma_s=loguni(rng, 1e-3, 1.0), beta=beta, p=p, b=b,
+             c=1 + loguni(rng, 1e-3, 9.0), n=n, k=k, albedo=rng.uniform(0, 1))
+    g = {key: f32(v) for key, v in g.items()}
+    g.update(diff_color=rng.randrange(4), layer=lay, layer_form=form)
+    return g
+
+
+_GHS = []
+
+
+def ghs_module():
+    """reference/ghs/domain_sweep.py (imported on first use: it needs numpy), its `m` taking
+    an mpf (the exact lambda_nm / 1000) as it is."""
+    if not _GHS:
+        sys.path.insert(0, os.path.join(HERE, "ghs"))
+        import domain_sweep as g
+        m32 = g.m
+        g.m = lambda x: x if isinstance(x, mp.mpf) else m32(x)
+        _GHS.append(g)
+    return _GHS[0]
+
+
+def ghs_value(q, cache):
+    """The GHS BRDF (1/sr, no cosine) of the base at the query's directions and wavelength."""
+    g = ghs_module()
+    gq = dict(q["ghs"], wi=q["wi"], wo=q["wo"])
+    with mp.workdps(g.DPS):
+        gq["lambda"] = mp.mpf(q["lambda_nm"]) / 1000
+        return g.brdf(gq, cache)[0]
+
+
 def gen_query(rng, fam):
     sigma = loguni(rng, *SIGMA)
     lam = rng.uniform(*LAMBDA_NM)
@@ -211,11 +307,19 @@ def gen_query(rng, fam):
     prof = {"werner_rect": 0, "werner_tri": 1}.get(fam)
     scr = [scratch(rng, x0, sigma, rng.randrange(2) if prof is None else prof)
            for i in range(ns)]
+    if fam == "werner_blended":
+        steer_rho(rng, scr, x0, sigma)
     q = dict(sigma=f32(sigma), lambda_nm=f32(lam), x=v32(x0))
     q["depth_term"] = rng.randrange(2)
     q["eta"] = rng.randrange(2) if fam == "velinov" else 0
     # the Gaussian base needs rho_c < 1 (one scratch narrower than sigma: rho_c < 0.4)
     q["base"] = int(fam == "velinov" and ns == 1 and scr[0]["w"] < sigma and rng.random() < 0.4)
+    if fam == "werner_blended":
+        # the kernel's BaseKind: 0 none (table::evaluate), 1 smooth, 2 GHS (bsdf::eval)
+        u = rng.random()
+        q["base"] = 0 if u < 0.3 else (1 if u < 0.45 else 2)
+        g = ghs_params(rng)
+        q["ghs"] = g if q["base"] == 2 else None
     wi = direction(rng)
     lam_um = lam / 1000
     s0 = scr[0]
@@ -254,10 +358,11 @@ def spec_of(fam, q):
             p1 = [c[0] + h * t[0] / n, c[1] + h * t[1] / n]
             scr.append(dict(p0=p0, p1=p1, width=s["w"], depth=s["d"],
                             profile=("rect", "triangle")[s["profile"]]))
-    model = "velinov" if fam == "velinov" else "werner"
+    model = {"velinov": "velinov", "werner_blended": "werner_blended"}.get(fam, "werner")
     opts = {"depth_term": ("small_angle", "exact")[q["depth_term"]],
             "eta": ("finite", "infinite")[q["eta"]],
-            "base": ("none", "gaussian")[q["base"]]}
+            # werner_blended's base is added outside refcore.brdf (ref_quad, ref_cf)
+            "base": ("none", "gaussian")[q["base"]] if model == "velinov" else "none"}
     spec = dict(model=model, options=opts, sigma_um=q["sigma"], scratches=scr,
                 material={"F": 1.0})
     query = dict(wi=list(q["wi"]), wo=list(q["wo"]), lambda_nm=q["lambda_nm"], x=list(q["x"]))
@@ -265,10 +370,19 @@ def spec_of(fam, q):
 
 
 def ref_quad(fam, q):
-    """refcore.brdf: eta and the profile transforms by quadrature."""
+    """refcore.brdf: eta and the profile transforms by quadrature (werner_blended: plus
+    max(1 - rho_c, 0) f_GHS, rho_c by refcore.rho_c's quadrature)."""
     rc.MEMO.clear()
     spec, query = spec_of(fam, q)
-    return rc.brdf(spec, query)
+    v = rc.brdf(spec, query)
+    if fam == "werner_blended" and q["base"] == 2:
+        with mp.workdps(rc.DPS + 10):
+            wi, wo = rc._direction(query["wi"]), rc._direction(query["wo"])
+            if wi[2] > 0 and wo[2] > 0:
+                w = 1 - rc.rho_c(spec["sigma_um"], spec["scratches"], query["x"])
+                if w > 0:
+                    v = +(v + w * ghs_value(q, ghs_module().Cache()))
+    return v
 
 
 def term_cf(spec, s, sigma, lam, gT, x0, xi, eta_mode):
@@ -291,11 +405,13 @@ def term_cf(spec, s, sigma, lam, gT, x0, xi, eta_mode):
     return mp_ * e
 
 
-def ref_cf(fam, q, dps=rc.DPS + 15, memo=None):
+def ref_cf(fam, q, dps=rc.DPS + 15, memo=None, parts=None):
     """The same BRDF from the closed forms (for kappa and as a cross-check). `memo` keeps
     each scratch's term by the float32 inputs it depends on, so a nudge of one scratch's
-    input recomputes only that scratch."""
+    input recomputes only that scratch (and the GHS base by its inputs). `parts`, a dict,
+    receives rho_c (werner_blended)."""
     memo = {} if memo is None else memo
+    blended = fam == "werner_blended"
     spec, query = spec_of(fam, q)
     glob = (q["sigma"], q["lambda_nm"], q["wi"], q["wo"], q["x"], q["depth_term"], q["eta"], dps)
     with mp.workdps(dps):
@@ -315,7 +431,8 @@ def ref_cf(fam, q, dps=rc.DPS + 15, memo=None):
             if key not in memo:
                 memo[key] = term_cf(spec, s, sigma, lam, gT, x0, xi, opts["eta"])
             Sk.append(memo[key])
-            if opts["base"] == "gaussian":
+            # rho_c: Velinov's Gaussian base; werner_blended's GHS base (and its rho_c column)
+            if opts["base"] == "gaussian" or (blended and (q["base"] == 2 or parts is not None)):
                 rk = ("rho",) + key
                 if rk not in memo:
                     memo[rk] = mp.mpf(s["width"]) * mp.re(rc.closedform_eta(sigma, s["p0"], s["p1"], x0, (0, 0)))
@@ -323,6 +440,19 @@ def ref_cf(fam, q, dps=rc.DPS + 15, memo=None):
         pref = 1 / (mp.pi * sigma ** 2 * lam ** 2)
         if spec["model"] == "werner":
             val = abs(B - mp.fsum(Sk)) ** 2
+        elif blended:
+            rho_c = mp.fsum(rho) / (2 * mp.pi * sigma ** 2)
+            if parts is not None:
+                parts["rho_c"] = rho_c
+            val = pref * abs(mp.fsum(Sk)) ** 2
+            if q["base"] == 2 and rho_c < 1:
+                gk = ("ghs", q["wi"], q["wo"], q["lambda_nm"]) + tuple(sorted(q["ghs"].items()))
+                if gk not in memo:
+                    if "ghs_cache" not in memo:
+                        memo["ghs_cache"] = ghs_module().Cache()
+                    memo[gk] = ghs_value(q, memo["ghs_cache"])
+                val += (1 - rho_c) * memo[gk]
+            return +val
         else:
             val = mp.fsum([abs(v) ** 2 for v in Sk])
             if opts["base"] == "gaussian":
@@ -340,6 +470,8 @@ def inputs_of(q):
         [("wo", j) for j in range(3)] + [("x", j) for j in range(2)]
     for i in range(len(q["scratches"])):
         keys += [("scratches", i, k) for k in ("cx", "cy", "tx", "ty", "h", "w", "d")]
+    if q.get("ghs"):
+        keys += [("ghs", k) for k in GHS_KEYS]
     return keys
 
 
@@ -353,17 +485,21 @@ def perturbed(q, key, up):
         ss = [dict(s) for s in q["scratches"]]
         ss[key[1]][key[2]] = nudge(ss[key[1]][key[2]], up)
         q2["scratches"] = ss
+    elif key[0] == "ghs":
+        q2["ghs"] = dict(q["ghs"], **{key[1]: nudge(q["ghs"][key[1]], up)})
     else:
         q2[key[0]] = nudge(q[key[0]], up)
     return q2
 
 
 def evaluate(args):
-    """(reference value, kappa, closed-form vs quadrature relative difference) of one query."""
+    """(reference value, kappa, closed-form vs quadrature relative difference, rho_c or None)
+    of one query."""
     fam, q = args
     mp.mp.dps = rc.DPS
     v = ref_quad(fam, q)
-    cf = ref_cf(fam, q)
+    parts = {}
+    cf = ref_cf(fam, q, parts=parts)
     with mp.workdps(60):
         cf_rel = abs(cf / v - 1) if v != 0 else abs(cf)
     kap = mp.mpf(0)
@@ -373,19 +509,22 @@ def evaluate(args):
         for key in inputs_of(q):
             for up in (False, True):
                 kap = max(kap, abs(ref_cf(fam, perturbed(q, key, up), KAPPA_DPS, memo) / c0 - 1))
-    return v, kap, cf_rel
+    return v, kap, cf_rel, parts.get("rho_c")
 
 
 # ------------------------------------------------------------------ files
-def header():
+def header(fam=None):
     h = ["sigma", "lambda_nm", "wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z", "x_x", "x_y",
          "depth_term", "eta", "base", "n"]
     for i in range(MAX_SCRATCHES):
         h += ["s%d_%s" % (i, k) for k in ("cx", "cy", "tx", "ty", "h", "w", "d", "profile")]
+    if fam == "werner_blended":
+        return h + ["ghs_" + k for k in GHS_KEYS + ("diff_color", "layer", "layer_form")] + \
+            ["ref", "kappa", "cf_rel", "rho_c"]
     return h + ["ref", "kappa", "cf_rel"]
 
 
-def row(q):
+def row(q, fam=None):
     r = [s32(q["sigma"]), s32(q["lambda_nm"])] + [s32(c) for c in q["wi"]] + \
         [s32(c) for c in q["wo"]] + [s32(c) for c in q["x"]]
     r += [str(q["depth_term"]), str(q["eta"]), str(q["base"]), str(len(q["scratches"]))]
@@ -395,6 +534,10 @@ def row(q):
             r += [s32(s[k]) for k in ("cx", "cy", "tx", "ty", "h", "w", "d")] + [str(s["profile"])]
         else:
             r += ["0"] * 8
+    if fam == "werner_blended":
+        g = q["ghs"]
+        r += [s32(g[k]) for k in GHS_KEYS] + [str(g[k]) for k in ("diff_color", "layer", "layer_form")] \
+            if g else ["0"] * (len(GHS_KEYS) + 3)
     return r
 
 
@@ -410,14 +553,18 @@ def gen_queries(fam, n, seed_offset=0):
 def run_family(fam, n, outdir, jobs, seed_offset=0):
     qs = gen_queries(fam, n, seed_offset)
     t0 = time.time()
-    with Pool(jobs) as pool:
-        res = pool.map(evaluate, [(fam, q) for q in qs], chunksize=4)
+    if jobs > 1:
+        with Pool(jobs) as pool:
+            res = pool.map(evaluate, [(fam, q) for q in qs], chunksize=4)
+    else:  # in this process
+        res = [evaluate((fam, q)) for q in qs]
     path = os.path.join(outdir, fam + ".csv")
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")
-        w.writerow(header())
-        for q, (v, kap, cf_rel) in zip(qs, res):
-            w.writerow(row(q) + [fmt(v), mp.nstr(kap, 4), mp.nstr(cf_rel, 3)])
+        w.writerow(header(fam))
+        for q, (v, kap, cf_rel, rho) in zip(qs, res):
+            extra = [mp.nstr(rho, 9)] if fam == "werner_blended" else []
+            w.writerow(row(q, fam) + [fmt(v), mp.nstr(kap, 4), mp.nstr(cf_rel, 3)] + extra)
     kmax = max(float(r[1]) for r in res)
     cmax = max(float(r[2]) for r in res)
     print("%-12s %6d queries  %7.1f s  max kappa %.2e  max |closed form/quadrature - 1| %.1e -> %s"
