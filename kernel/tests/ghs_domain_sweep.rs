@@ -19,69 +19,19 @@
 //! with `GHS_SWEEP_DIR=DIR`. `GHS_SWEEP_DUMP=FILE` writes every D and full-BRDF query's
 //! (β, tanθh, err, bound, κ) for the stability map (`docs/ghs_stability_map.py`).
 
+mod sweep_common;
+
 use glam::{Vec2, Vec3};
 use scratchwave_kernel::fresnel::fresnel;
 use scratchwave_kernel::ghs::{self, Ghs, GhsParams, ndf::GenBeckmann, spread::KCorrelation};
 use scratchwave_kernel::sampling::ghs as gs;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
+use sweep_common::{FLOOR, K, Row, Stat, Table, bound, ghs_params, rel, report};
 
-/// The multiple of `κ` a kernel result may be off by.
-const K: f64 = 8.0;
-/// The accuracy floor for well-conditioned queries.
-const FLOOR: f64 = 1.0e-4;
-/// Exact values below this are compared absolutely (f32 has no headroom there).
-const TINY: f64 = 1.0e-30;
-
-struct Table {
-    head: Vec<String>,
-    rows: Vec<Vec<String>>,
-}
-
-struct Row<'a> {
-    t: &'a Table,
-    r: &'a [String],
-}
-
-impl Row<'_> {
-    fn s(&self, col: &str) -> &str {
-        let i = self.t.head.iter().position(|h| h == col);
-        &self.r[i.unwrap_or_else(|| panic!("no column {col}"))]
-    }
-    /// An input: the stored shortest decimal reads back as the exact f32.
-    fn f(&self, col: &str) -> f32 {
-        self.s(col).parse().unwrap()
-    }
-    fn d(&self, col: &str) -> f64 {
-        self.s(col).parse().unwrap()
-    }
-    fn u(&self, col: &str) -> u32 {
-        self.s(col).parse().unwrap()
-    }
-    fn v3(&self, name: &str) -> Vec3 {
-        Vec3::new(
-            self.f(&format!("{name}_x")),
-            self.f(&format!("{name}_y")),
-            self.f(&format!("{name}_z")),
-        )
-    }
-}
-
-fn load(family: &str) -> Table {
-    let dir = std::env::var("GHS_SWEEP_DIR").unwrap_or_else(|_| {
-        format!(
-            "{}/../reference/ghs/golden/sweep",
-            env!("CARGO_MANIFEST_DIR")
-        )
-    });
-    let path = format!("{dir}/{family}.csv");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
-    let mut lines = text.lines();
-    let head = lines.next().unwrap().split(',').map(String::from).collect();
-    let rows = lines
-        .map(|l| l.split(',').map(String::from).collect())
-        .collect();
-    Table { head, rows }
+/// `name_x, name_y, name_z` as a vector.
+fn v3(r: &Row, name: &str) -> Vec3 {
+    Vec3::from_array(r.a3(name))
 }
 
 /// One kernel evaluation against its reference: relative error (or absolute error for tiny
@@ -95,38 +45,9 @@ struct Outcome {
     group: &'static str,
 }
 
-fn rel(got: f32, want: f64) -> f64 {
-    if want.abs() < TINY {
-        // compared absolutely: an f32 result this small is only required to be as small
-        return if (got as f64 - want).abs() <= TINY {
-            0.0
-        } else {
-            f64::INFINITY
-        };
-    }
-    ((got as f64 - want) / want).abs()
-}
-
 fn tan_of(v: Vec3) -> f64 {
     let (x, y, z) = (v.x as f64, v.y as f64, v.z as f64);
     (x * x + y * y).sqrt() / z
-}
-
-fn params(r: &Row) -> GhsParams {
-    GhsParams {
-        sigma_s_um: r.f("sigma_s"),
-        beta: r.f("beta"),
-        p: r.f("p"),
-        b_um: r.f("b"),
-        c: r.f("c"),
-        n: r.f("n"),
-        k: r.f("k"),
-        diff_color: r.u("diff_color"),
-        layer: r.u("layer"),
-        layer_form: r.u("layer_form"),
-        layer_albedo: r.f("albedo"),
-        pad: 0,
-    }
 }
 
 /// A material that only fixes what the single-term families need.
@@ -146,7 +67,7 @@ fn eval(family: &str, r: &Row) -> Option<Outcome> {
     };
     match family {
         "ndf" => {
-            let h = r.v3("h");
+            let h = v3(r, "h");
             let (beta, p) = (r.f("beta"), r.f("p"));
             let got = GenBeckmann::new(beta, p).d(h);
             Some(Outcome {
@@ -158,7 +79,7 @@ fn eval(family: &str, r: &Row) -> Option<Outcome> {
         }
         "g1" => {
             let g = Ghs::new(&material(r.f("beta"), r.f("p"), 1.0, 2.0), 0.5);
-            scalar(g.g1(r.v3("w").z), "G1 (Eqs. 40-42)")
+            scalar(g.g1(v3(r, "w").z), "G1 (Eqs. 40-42)")
         }
         "fresnel" => {
             let (n, k) = (r.f("n"), r.f("k"));
@@ -171,16 +92,16 @@ fn eval(family: &str, r: &Row) -> Option<Outcome> {
             scalar(fresnel(r.f("cos"), n, k), group)
         }
         "color" => scalar(
-            ghs::color::diffraction_color(r.v3("wi"), r.v3("wo"), r.f("n"), r.f("k")),
+            ghs::color::diffraction_color(v3(r, "wi"), v3(r, "wo"), r.f("n"), r.f("k")),
             "Q (Eq. 27)",
         ),
         "sigma_rel" => {
             let g = Ghs::new(&material(0.1, 1.0, r.f("b"), r.f("c")), r.f("lambda"));
-            scalar(g.sigma_rel_sq(r.v3("wi")), "σ_rel² (Eq. 25)")
+            scalar(g.sigma_rel_sq(v3(r, "wi")), "σ_rel² (Eq. 25)")
         }
         "brdf" => {
-            let p = params(r);
-            let (wi, wo) = (r.v3("wi"), r.v3("wo"));
+            let p = ghs_params(r, "");
+            let (wi, wo) = (v3(r, "wi"), v3(r, "wo"));
             let got = ghs::evaluate(&p, wi, wo, r.f("lambda"));
             let group = match (p.layer, p.layer_form, p.k > 0.0) {
                 (0, _, true) => "ρ conductor / absorber",
@@ -216,7 +137,7 @@ fn eval(family: &str, r: &Row) -> Option<Outcome> {
                 c: r.f("c"),
             };
             let (x, y) = (r.d("ref_x"), r.d("ref_y"));
-            let got = gs::sample_diffraction(&k, r.v3("wi"), Vec2::new(r.f("u0"), r.f("u1")));
+            let got = gs::sample_diffraction(&k, v3(r, "wi"), Vec2::new(r.f("u0"), r.f("u1")));
             let err = match got {
                 Some(w) => ((w.x as f64 - x).powi(2) + (w.y as f64 - y).powi(2)).sqrt() / r.d("r"),
                 // rejected as outside the disk: only allowed within rounding of the rim
@@ -232,18 +153,6 @@ fn eval(family: &str, r: &Row) -> Option<Outcome> {
         }
         _ => unreachable!(),
     }
-}
-
-#[derive(Default)]
-struct Stat {
-    n: usize,
-    over: usize,
-    worst_err: f64,
-    worst_ratio: f64,
-    worst_row: String,
-    /// The largest `err/κ` among the queries whose bound is `K·κ` (not the floor).
-    worst_err_per_kappa: f64,
-    n_kappa_bound: usize,
 }
 
 #[test]
@@ -262,59 +171,31 @@ fn every_query_within_its_conditioning_bound() {
     let mut dump = String::new();
     let mut total = 0;
     for (fi, family) in families.iter().enumerate() {
-        let t = load(family);
+        let t = Table::load("GHS_SWEEP_DIR", "reference/ghs/golden/sweep", family);
         assert!(!t.rows.is_empty(), "{family}: no queries");
-        for raw in &t.rows {
-            let r = Row { t: &t, r: raw };
+        for r in t.rows() {
             let Some(o) = eval(family, &r) else {
                 continue;
             };
             total += 1;
-            let bound = FLOOR.max(K * o.kappa);
-            let ratio = o.err / bound;
             if let Some((beta, tan_h)) = o.map {
                 writeln!(
                     dump,
-                    "{family},{beta},{tan_h},{},{bound},{}",
-                    o.err, o.kappa
+                    "{family},{beta},{tan_h},{},{},{}",
+                    o.err,
+                    bound(o.kappa),
+                    o.kappa
                 )
                 .unwrap();
             }
-            let s = stats.entry((fi, o.group)).or_default();
-            s.n += 1;
-            s.worst_err = s.worst_err.max(o.err);
-            if K * o.kappa > FLOOR {
-                s.n_kappa_bound += 1;
-                s.worst_err_per_kappa = s.worst_err_per_kappa.max(o.err / o.kappa);
-            }
-            if !(ratio <= 1.0) {
-                s.over += 1;
-            }
-            if !(ratio <= s.worst_ratio) {
-                s.worst_ratio = ratio;
-                s.worst_row = raw.join(",");
-            }
+            stats
+                .entry((fi, o.group))
+                .or_default()
+                .add(o.err, o.kappa, || r.text());
         }
     }
     println!("{total} queries; bound = max({FLOOR:e}, {K}·κ)");
-    println!(
-        "| {:<34} | {:>6} | {:>13} | {:>12} | {:>6} | {:>16} |",
-        "family", "n", "worst rel err", "worst err/bd", "over", "err/κ (n, κ-bd)"
-    );
-    let mut bad = Vec::new();
-    for ((_, group), s) in &stats {
-        println!(
-            "| {group:<34} | {:>6} | {:>13.2e} | {:>12.3} | {:>6} | {:>16} |",
-            s.n,
-            s.worst_err,
-            s.worst_ratio,
-            s.over,
-            format!("{:.2} ({})", s.worst_err_per_kappa, s.n_kappa_bound)
-        );
-        if s.over > 0 {
-            bad.push(format!("{group}: {} over, worst {}", s.over, s.worst_row));
-        }
-    }
+    let bad = report(&stats, 34);
     if let Ok(path) = std::env::var("GHS_SWEEP_DUMP") {
         std::fs::write(&path, format!("family,beta,tan_h,err,bound,kappa\n{dump}")).unwrap();
     }

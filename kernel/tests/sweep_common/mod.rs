@@ -1,0 +1,267 @@
+//! What every domain sweep (issue #20) shares: the CSV tables the mpmath generators write
+//! (`reference/scratch_sweep.py`, `reference/ghs/domain_sweep.py`, …), the acceptance rule
+//! `err ≤ max(FLOOR, K·κ)` and the per-group report. Used by the kernel's sweep tests and,
+//! through `#[path]`, by the conformance crate's cross-backend sweep.
+#![allow(dead_code)]
+
+use scratchwave_kernel::ghs::GhsParams;
+use scratchwave_kernel::material::Material;
+use scratchwave_kernel::scratch::{Profile, Scratch};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery};
+use std::collections::BTreeMap;
+
+/// The multiple of `κ` (one-ulp conditioning) a result may be off by.
+pub const K: f64 = 8.0;
+/// The accuracy floor for well-conditioned queries.
+pub const FLOOR: f64 = 1.0e-4;
+/// Exact values below this are compared absolutely (f32 has no headroom there).
+pub const TINY: f64 = 1.0e-30;
+
+/// The bound of a query of conditioning `kappa`.
+pub fn bound(kappa: f64) -> f64 {
+    FLOOR.max(K * kappa)
+}
+
+/// One family's CSV: a header and rows of shortest decimals.
+pub struct Table {
+    pub head: Vec<String>,
+    pub rows: Vec<Vec<String>>,
+}
+
+impl Table {
+    /// `DIR/family.csv`, `DIR` from the environment variable `env` or else `default_dir`
+    /// (relative to the repository root; every crate is one level below it).
+    pub fn load(env: &str, default_dir: &str, family: &str) -> Table {
+        let dir = std::env::var(env)
+            .unwrap_or_else(|_| format!("{}/../{default_dir}", env!("CARGO_MANIFEST_DIR")));
+        let path = format!("{dir}/{family}.csv");
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+        let mut lines = text.lines();
+        let head = lines.next().unwrap().split(',').map(String::from).collect();
+        let rows = lines
+            .map(|l| l.split(',').map(String::from).collect())
+            .collect();
+        Table { head, rows }
+    }
+
+    /// The rows, each readable by column name.
+    pub fn rows(&self) -> impl Iterator<Item = Row<'_>> {
+        self.rows.iter().map(|r| Row { t: self, r })
+    }
+}
+
+/// One query of a [`Table`].
+pub struct Row<'a> {
+    pub t: &'a Table,
+    pub r: &'a [String],
+}
+
+impl Row<'_> {
+    pub fn s(&self, col: &str) -> &str {
+        let i = self.t.head.iter().position(|h| h == col);
+        &self.r[i.unwrap_or_else(|| panic!("no column {col}"))]
+    }
+    /// An input: the stored shortest decimal reads back as the exact f32.
+    pub fn f(&self, col: &str) -> f32 {
+        self.s(col).parse().unwrap()
+    }
+    pub fn d(&self, col: &str) -> f64 {
+        self.s(col).parse().unwrap()
+    }
+    pub fn u(&self, col: &str) -> u32 {
+        self.s(col).parse().unwrap()
+    }
+    /// `name_x, name_y, name_z`.
+    pub fn a3(&self, name: &str) -> [f32; 3] {
+        [
+            self.f(&format!("{name}_x")),
+            self.f(&format!("{name}_y")),
+            self.f(&format!("{name}_z")),
+        ]
+    }
+    /// The row as written.
+    pub fn text(&self) -> String {
+        self.r.join(",")
+    }
+}
+
+/// Relative error of `got` against the exact `want`; below [`TINY`], 0 if `got` is as
+/// small, else infinite.
+pub fn rel(got: f32, want: f64) -> f64 {
+    if want.abs() < TINY {
+        return if (got as f64 - want).abs() <= TINY {
+            0.0
+        } else {
+            f64::INFINITY
+        };
+    }
+    ((got as f64 - want) / want).abs()
+}
+
+/// One report group's tally.
+#[derive(Default)]
+pub struct Stat {
+    pub n: usize,
+    pub over: usize,
+    pub worst_err: f64,
+    pub worst_ratio: f64,
+    pub worst_row: String,
+    /// The largest `err/κ` among the queries whose bound is `K·κ` (not the floor).
+    pub worst_err_per_kappa: f64,
+    pub n_kappa_bound: usize,
+}
+
+impl Stat {
+    /// Adds one query; `row` (called only for the worst one so far) describes it. Returns
+    /// `err / bound`.
+    pub fn add(&mut self, err: f64, kappa: f64, row: impl FnOnce() -> String) -> f64 {
+        let ratio = err / bound(kappa);
+        self.n += 1;
+        self.worst_err = self.worst_err.max(err);
+        if K * kappa > FLOOR {
+            self.n_kappa_bound += 1;
+            self.worst_err_per_kappa = self.worst_err_per_kappa.max(err / kappa);
+        }
+        if !(ratio <= 1.0) {
+            self.over += 1;
+        }
+        if !(ratio <= self.worst_ratio) {
+            self.worst_ratio = ratio;
+            self.worst_row = row();
+        }
+        ratio
+    }
+}
+
+/// Prints the per-group table (groups keyed by `(order, name)`, `width` the name column)
+/// and returns one line per group with queries over the bound.
+pub fn report<O: Ord>(stats: &BTreeMap<(O, &'static str), Stat>, width: usize) -> Vec<String> {
+    println!(
+        "| {:<width$} | {:>6} | {:>13} | {:>12} | {:>6} | {:>16} |",
+        "family", "n", "worst rel err", "worst err/bd", "over", "err/κ (n, κ-bd)"
+    );
+    let mut bad = Vec::new();
+    for ((_, group), s) in stats {
+        println!(
+            "| {group:<width$} | {:>6} | {:>13.2e} | {:>12.3} | {:>6} | {:>16} |",
+            s.n,
+            s.worst_err,
+            s.worst_ratio,
+            s.over,
+            format!("{:.2} ({})", s.worst_err_per_kappa, s.n_kappa_bound)
+        );
+        println!("  worst: {}", s.worst_row);
+        if s.over > 0 {
+            bad.push(format!("{group}: {} over, worst {}", s.over, s.worst_row));
+        }
+    }
+    bad
+}
+
+/// One query of the scratch-model sweep (`reference/scratch_sweep.py`) as the kernel's
+/// table records: what `table::evaluate` receives. `base` is the `werner_blended` base
+/// (a `BaseKind` code; 0 for the other families, whose `base` column is
+/// `TableParams::base_gaussian`): a base other than none is evaluated through `bsdf::eval`.
+pub struct ScratchQuery {
+    pub params: TableParams,
+    pub scratches: Vec<Scratch>,
+    pub query: TableQuery,
+    pub base: u32,
+    pub group: &'static str,
+}
+
+/// The families of `reference/golden/sweep/` (scratch models).
+pub const SCRATCH_FAMILIES: [&str; 4] = ["velinov", "werner_rect", "werner_tri", "werner_blended"];
+
+/// Decodes one scratch-sweep row of `family`.
+pub fn scratch_query(family: &str, r: &Row) -> ScratchQuery {
+    let n = r.u("n") as usize;
+    let scratches: Vec<Scratch> = (0..n)
+        .map(|i| Scratch {
+            center: [r.f(&format!("s{i}_cx")), r.f(&format!("s{i}_cy"))],
+            tangent: [r.f(&format!("s{i}_tx")), r.f(&format!("s{i}_ty"))],
+            half_len: r.f(&format!("s{i}_h")),
+            width: r.f(&format!("s{i}_w")),
+            depth: r.f(&format!("s{i}_d")),
+            profile: r.u(&format!("s{i}_profile")),
+        })
+        .collect();
+    let velinov = family == "velinov";
+    let blended = family == "werner_blended";
+    let params = TableParams {
+        model: if velinov {
+            Model::Velinov as u32
+        } else if blended {
+            Model::WernerBlended as u32
+        } else {
+            Model::Werner as u32
+        },
+        eta: r.u("eta"),
+        depth_term: r.u("depth_term"),
+        // werner_blended's `base` column is a BaseKind, not this flag
+        base_gaussian: if blended { 0 } else { r.u("base") },
+        sigma_um: r.f("sigma"),
+        pad: [0; 3],
+    };
+    let query = TableQuery {
+        wi: r.a3("wi"),
+        lambda_nm: r.f("lambda_nm"),
+        wo: r.a3("wo"),
+        x: [r.f("x_x"), r.f("x_y")],
+        material: Material::constant(1.0),
+        ..Default::default()
+    };
+    let base = if blended { r.u("base") } else { 0 };
+    let tri = scratches
+        .iter()
+        .any(|s| s.profile == Profile::Triangle as u32);
+    let group = match (family, params.eta, params.base_gaussian) {
+        ("werner_blended", _, _) => blended_group(base, r.d("rho_c")),
+        ("velinov", 1, _) => "Velinov Eq. 7, η∞ (Eq. 8)",
+        ("velinov", _, 1) => "Velinov Eqs. 6–7, finite η + (1−ρc)B²",
+        ("velinov", _, _) => "Velinov Eq. 7, finite η (App. A)",
+        _ if tri => "Werner Eq. 15, triangle",
+        _ => "Werner Eq. 15, rectangle",
+    };
+    ScratchQuery {
+        params,
+        scratches,
+        query,
+        base,
+        group,
+    }
+}
+
+/// The report group of a `werner_blended` query: its base, and for the GHS base where ρc
+/// (at the query's `x`) puts the weight `1 − ρc`.
+fn blended_group(base: u32, rho_c: f64) -> &'static str {
+    match base {
+        0 => "Werner §5 |S|², no base (table)",
+        1 => "Werner §5 |S|², smooth base (bsdf)",
+        _ if rho_c < 0.01 => "Werner §5 + (1−ρc) GHS, ρc < 0.01",
+        _ if rho_c < 0.99 => "Werner §5 + (1−ρc) GHS, 0.01 ≤ ρc < 0.99",
+        _ => "Werner §5 + (1−ρc) GHS, ρc ≥ 0.99",
+    }
+}
+
+/// A GHS material from the columns `{prefix}sigma_s`, `beta`, `p`, `b`, `c`, `n`, `k`,
+/// `diff_color`, `layer`, `layer_form`, `albedo` (as `reference/ghs/domain_sweep.py` names
+/// them).
+pub fn ghs_params(r: &Row, prefix: &str) -> GhsParams {
+    let f = |c: &str| r.f(&format!("{prefix}{c}"));
+    let u = |c: &str| r.u(&format!("{prefix}{c}"));
+    GhsParams {
+        sigma_s_um: f("sigma_s"),
+        beta: f("beta"),
+        p: f("p"),
+        b_um: f("b"),
+        c: f("c"),
+        n: f("n"),
+        k: f("k"),
+        diff_color: u("diff_color"),
+        layer: u("layer"),
+        layer_form: u("layer_form"),
+        layer_albedo: f("albedo"),
+        pad: 0,
+    }
+}
