@@ -75,9 +75,19 @@ pub fn contained_length(s: &Scratch, e: &Ellipse) -> f32 {
     let r = math::sqrt(disc);
     let b = qm.dot(dir);
     // Roots in arc length from m, clipped to the segment [−L/2 − s_c, L/2 − s_c].
-    let s0 = math::max((-b - r) / a, -f.half_len - s_c);
-    let s1 = math::min((-b + r) / a, f.half_len - s_c);
-    if s1 > s0 { s1 - s0 } else { 0.0 }
+    let (r0, r1) = ((-b - r) / a, (-b + r) / a);
+    let (e0, e1) = (-f.half_len - s_c, f.half_len - s_c);
+    let s0 = math::max(r0, e0);
+    let s1 = math::min(r1, e1);
+    if !(s1 > s0) {
+        0.0
+    } else if r0 <= e0 && r1 >= e1 {
+        // The whole segment is inside: its length, not the difference of its two ends
+        // measured from m (each rounded at ulp(s_c), far more than a short segment's length).
+        2.0 * f.half_len
+    } else {
+        s1 - s0
+    }
 }
 
 /// Perpendicular distance of the ellipse centre from the scratch's line (`s_b`).
@@ -124,11 +134,23 @@ pub fn rho_p_accurate(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
     footprint_integral(s, e, sigma, false) * s.width / (math::TAU * sigma * sigma)
 }
 
-/// Breakpoint offsets (in σ) around each feature along the scratch.
-const OFFSETS: [f32; 5] = [-3.0, -1.5, 0.0, 1.5, 3.0];
-/// Maximum number of panel boundaries: the 2 ellipse ends, 5 offsets around each of the 2
-/// segment ends, and 2 boundary crossings for each of the 5 band lines.
-const MAX_BREAKS: usize = 22;
+/// Number of breakpoint offsets per feature.
+const N_OFFSETS: usize = 7;
+/// Band lines `v = OFFSETS·s`, in units of the standard deviation `s` of the averaged
+/// Gaussian (`σ/√2` for `|η_s|²`, `σ` for ρc): out to 6 s, so that no Gaussian tail above
+/// ~1e-9 is left to a panel that runs on to the far end of a large footprint.
+const OFFSETS: [f32; N_OFFSETS] = [-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 6.0];
+/// Breakpoint offsets around each segment end, in `s`, positive outward: the tail of g out
+/// to 6 s beyond the end, and inward to 24 s.
+const END_OFFSETS: [f32; N_OFFSETS] = [-24.0, -12.0, -6.0, -3.0, 0.0, 3.0, 6.0];
+/// Depths of the band lines into a footprint that lies wholly on one side of the scratch
+/// (gap `d` between its near edge and the scratch line), in units of `ℓ = s²/(d + s)`, the
+/// length over which the Gaussian falls by `e` there (`e^{−c}` at depth `c ℓ`, `d ≫ s`).
+const GAP_DEPTHS: [f32; N_OFFSETS] = [0.125, 0.5, 1.25, 2.5, 5.0, 10.0, 20.0];
+/// Maximum number of panel boundaries: the 2 ellipse ends, the offsets around each of the 2
+/// segment ends (or one set beyond one end), one set past a crossing of the scratch line
+/// beyond an end, and 2 boundary crossings for each band line.
+const MAX_BREAKS: usize = 2 + 5 * N_OFFSETS;
 
 /// `(1/A_P)∫_P |η_s|²` (`squared`) or `(1/A_P)∫_P exp(−v²/(2σ²)) g(u)` (not squared),
 /// with `u, v` the scratch-frame coordinates of `x` and `g(u) = ∫_seg exp(−(s−u)²/(2σ²)) ds`.
@@ -151,6 +173,12 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
     let sqrt_qc = math::sqrt(qc);
     // Half extent of the ellipse along the scratch, and chord half-length cos θ / √qc.
     let half_u = ab * sqrt_qc;
+    // Standard deviation of the averaged Gaussian (along and across the scratch).
+    let sd = if squared {
+        sigma * FRAC_1_SQRT_2
+    } else {
+        sigma
+    };
     // Panel boundaries in θ (u = eu + half_u sin θ).
     let mut br = [0.0f32; MAX_BREAKS];
     let mut n = 0;
@@ -158,31 +186,94 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
     n += 1;
     br[n] = 0.5 * math::PI;
     n += 1;
-    // Segment ends: the along-scratch factor g(u) changes within a few σ of them.
-    let ends = [-frame.half_len, frame.half_len];
-    let mut f = 0;
-    while f < 2 {
+    // Segment ends: the along-scratch factor g(u) changes within a few σ of them, and
+    // further in where the footprint's edge leaves the band near an end at a shallow angle
+    // (the integrand then decays into the segment over many σ: END_OFFSETS reach 24 s in).
+    let det = i1 * i2;
+    let gap_u = math::abs(eu) - frame.half_len - half_u;
+    if gap_u > 0.0 {
+        // A footprint wholly beyond one end (gap `d` from it to the footprint's near end)
+        // sees only the tail of g, which falls by `e` over `ℓ = s²/(d + s)`: the breaks sit
+        // at depths `c ℓ` inside the near end, `u − eu = ±(δ − U)` (as for the band lines
+        // below).
+        let dir = math::sign(eu);
+        let ell_u = sd * sd / (gap_u + sd);
         let mut o = 0;
-        while o < 5 {
-            push_break(
-                &mut br,
-                &mut n,
-                (ends[f] + OFFSETS[o] * sigma - eu) / half_u,
-            );
+        while o < N_OFFSETS {
+            let depth = math::min(ell_u * GAP_DEPTHS[o], 2.0 * half_u);
+            push_break(&mut br, &mut n, dir * (depth - half_u) / half_u);
             o += 1;
         }
-        f += 1;
+    } else {
+        let ends = [-frame.half_len, frame.half_len];
+        let mut f = 0;
+        while f < 2 {
+            // outward from the segment: −1 at its start, +1 at its end
+            let out = if f == 0 { -1.0 } else { 1.0 };
+            let mut o = 0;
+            while o < N_OFFSETS {
+                push_break(
+                    &mut br,
+                    &mut n,
+                    (ends[f] + out * END_OFFSETS[o] * sd - eu) / half_u,
+                );
+                o += 1;
+            }
+            f += 1;
+        }
+    }
+    // A footprint that crosses the scratch line only beyond an end (`du = (qb ev ∓
+    // √(qa − ev² det))/qa`, e.g. a needle steeply across the line past the end) peaks where
+    // it crosses, not where it comes nearest in u: the same depths past the nearer crossing.
+    let disc0 = qa - ev * ev * det;
+    if disc0 > 0.0 {
+        let r0 = math::sqrt(disc0);
+        let (c0, c1) = ((qb * ev - r0) / qa, (qb * ev + r0) / qa);
+        let (past_hi, past_lo) = (eu + c0 - frame.half_len, -frame.half_len - (eu + c1));
+        let (cross, dir, gap_c) = if past_hi > 0.0 {
+            (c0, 1.0, past_hi)
+        } else {
+            (c1, -1.0, past_lo)
+        };
+        if gap_c > 0.0 {
+            let ell_c = sd * sd / (gap_c + sd);
+            let mut o = 0;
+            while o < N_OFFSETS {
+                push_break(
+                    &mut br,
+                    &mut n,
+                    (cross + dir * ell_c * GAP_DEPTHS[o]) / half_u,
+                );
+                o += 1;
+            }
+        }
     }
     // Where the ellipse boundary crosses the scratch's Gaussian band: the intersections of
-    // the lines v = OFFSETS·σ with the ellipse, qa du² + 2 qb dv du + qc dv² = 1, i.e.
+    // the lines v = OFFSETS·s with the ellipse, qa du² + 2 qb dv du + qc dv² = 1, i.e.
     // du = (−qb dv ± √(qa − dv² det))/qa with det = qa qc − qb² = 1/(a1 a2)². For a large
     // footprint these are where the chords' ends leave the band; for a needle they bracket
     // where the whole chord crosses it.
-    let det = i1 * i2;
+    //
+    // A footprint wholly on one side (its near edge a gap `d` > 0 from the scratch line,
+    // half extent `V = a1 a2 √qa` across) meets none of these lines; its integrand peaks
+    // where the edge comes closest, over a width that shrinks like `√(ℓ R)`. There the lines
+    // sit at depths `δ = c ℓ` inside the near edge, `dv = ±(δ − V)`, with
+    // `disc = det·δ(2V − δ)` written without the cancellation of `qa − dv² det`.
+    let v_half = ab * math::sqrt(qa);
+    let gap = math::abs(ev) - v_half;
+    let ell = sd * sd / (gap + sd);
     let mut o = 0;
-    while o < 5 {
-        let dv = OFFSETS[o] * sigma - ev;
-        let disc = qa - dv * dv * det;
+    while o < N_OFFSETS {
+        let (dv, disc) = if gap > 0.0 {
+            let depth = math::min(ell * GAP_DEPTHS[o], 2.0 * v_half);
+            (
+                math::sign(ev) * (depth - v_half),
+                det * depth * (2.0 * v_half - depth),
+            )
+        } else {
+            let dv = OFFSETS[o] * sd - ev;
+            (dv, qa - dv * dv * det)
+        };
         if disc > 0.0 && qa > 0.0 {
             let r = math::sqrt(disc);
             push_break(&mut br, &mut n, (-qb * dv - r) / qa / half_u);
@@ -215,12 +306,11 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
             let inner = if off_band || off_ends {
                 0.0
             } else {
-                let g = math::gauss_interval(-frame.half_len - u, frame.half_len - u, sigma);
-                if squared {
-                    g * g * math::gauss_interval(vc - half_v, vc + half_v, sigma * FRAC_1_SQRT_2)
-                } else {
-                    g * math::gauss_interval(vc - half_v, vc + half_v, sigma)
-                }
+                // Both intervals as centre and half length: a short segment or chord several
+                // σ out loses its length to the rounding of its ends otherwise (2e-4 for a
+                // 1e-3σ footprint 5σ from the scratch; issue #20).
+                let g = math::gauss_interval_centered(-u, frame.half_len, sigma);
+                g * if squared { g } else { 1.0 } * math::gauss_interval_centered(vc, half_v, sd)
             };
             total += w * half * inner * half_u * ct;
             i += 1;

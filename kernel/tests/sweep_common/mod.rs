@@ -4,6 +4,7 @@
 //! through `#[path]`, by the conformance crate's cross-backend sweep.
 #![allow(dead_code)]
 
+use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::ghs::GhsParams;
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::scratch::{Profile, Scratch};
@@ -19,7 +20,12 @@ pub const TINY: f64 = 1.0e-30;
 
 /// The bound of a query of conditioning `kappa`.
 pub fn bound(kappa: f64) -> f64 {
-    FLOOR.max(K * kappa)
+    bound_with(K, kappa)
+}
+
+/// The bound with another multiple `k` of `κ` (a family that states and justifies its own).
+pub fn bound_with(k: f64, kappa: f64) -> f64 {
+    FLOOR.max(k * kappa)
 }
 
 /// One family's CSV: a header and rows of shortest decimals.
@@ -115,10 +121,15 @@ impl Stat {
     /// Adds one query; `row` (called only for the worst one so far) describes it. Returns
     /// `err / bound`.
     pub fn add(&mut self, err: f64, kappa: f64, row: impl FnOnce() -> String) -> f64 {
-        let ratio = err / bound(kappa);
+        self.add_with(K, err, kappa, row)
+    }
+
+    /// [`Stat::add`] under [`bound_with`]`(k, κ)`.
+    pub fn add_with(&mut self, k: f64, err: f64, kappa: f64, row: impl FnOnce() -> String) -> f64 {
+        let ratio = err / bound_with(k, kappa);
         self.n += 1;
         self.worst_err = self.worst_err.max(err);
-        if K * kappa > FLOOR {
+        if k * kappa > FLOOR {
             self.n_kappa_bound += 1;
             self.worst_err_per_kappa = self.worst_err_per_kappa.max(err / kappa);
         }
@@ -264,4 +275,25 @@ pub fn ghs_params(r: &Row, prefix: &str) -> GhsParams {
         layer_albedo: f("albedo"),
         pad: 0,
     }
+}
+
+/// The inputs of one footprint-sweep row (`reference/footprint_sweep.py`): the scratch
+/// (depth and profile unused), the ellipse and σ.
+pub fn footprint_inputs(r: &Row) -> (Scratch, Ellipse, f32) {
+    let s = Scratch {
+        center: [r.f("s_cx"), r.f("s_cy")],
+        tangent: [r.f("s_tx"), r.f("s_ty")],
+        half_len: r.f("s_h"),
+        width: r.f("s_w"),
+        depth: 0.0,
+        profile: 0,
+    };
+    let e = Ellipse {
+        center: [r.f("e_cx"), r.f("e_cy")],
+        angle_rad: r.f("e_angle"),
+        a1: r.f("e_a1"),
+        a2: r.f("e_a2"),
+        ..Ellipse::default()
+    };
+    (s, e, r.f("sigma"))
 }
