@@ -25,14 +25,12 @@ import argparse
 import csv
 import math
 import os
-import subprocess
 import sys
-import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from ghs_stability_map import STOPS, cell, colour, read_dump  # noqa: E402
+from ghs_stability_map import STOPS, cell, colour, read_dump, run_sweep_test  # noqa: E402
 
 BEFORE = os.path.join(HERE, "footprint-stability-before.csv")
 SVG = os.path.join(HERE, "footprint-stability.svg")
@@ -75,18 +73,7 @@ def model_grid(rows):
 
 
 def run_test():
-    fd, path = tempfile.mkstemp(suffix=".csv")
-    os.close(fd)
-    env = dict(os.environ, FOOTPRINT_SWEEP_DUMP=path)
-    cmd = ["cargo", "test", "--release", "-p", "scratchwave-kernel", "--test", "footprint_domain_sweep",
-           "--", "--nocapture"]
-    r = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
-    sys.stdout.write("\n".join(l for l in r.stdout.splitlines() if l.startswith("|") or "queries" in l) + "\n")
-    if r.returncode != 0:
-        print("note: the sweep test failed (the map shows where)", file=sys.stderr)
-    rows = read_dump(path)
-    os.unlink(path)
-    return rows
+    return run_sweep_test("footprint_domain_sweep", "FOOTPRINT_SWEEP_DUMP")
 
 
 def save_grid(g, path):

@@ -58,11 +58,13 @@ def read_dump(path):
         return list(csv.DictReader(fh))
 
 
-def run_test():
+def run_sweep_test(test, dump_env):
+    """Runs the kernel's sweep test `test` with `dump_env` naming a temporary dump file;
+    prints its table lines and returns the dump's rows (the other maps use this too)."""
     fd, path = tempfile.mkstemp(suffix=".csv")
     os.close(fd)
-    env = dict(os.environ, GHS_SWEEP_DUMP=path)
-    cmd = ["cargo", "test", "--release", "-p", "scratchwave-kernel", "--test", "ghs_domain_sweep",
+    env = dict(os.environ, **{dump_env: path})
+    cmd = ["cargo", "test", "--release", "-p", "scratchwave-kernel", "--test", test,
            "--", "--nocapture"]
     r = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True)
     sys.stdout.write("\n".join(l for l in r.stdout.splitlines() if l.startswith("|") or "queries" in l) + "\n")
@@ -71,6 +73,10 @@ def run_test():
     rows = read_dump(path)
     os.unlink(path)
     return rows
+
+
+def run_test():
+    return run_sweep_test("ghs_domain_sweep", "GHS_SWEEP_DUMP")
 
 
 def save_grid(g, path):
