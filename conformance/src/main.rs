@@ -334,16 +334,7 @@ fn render_command(file: &str, flags: &[(&str, &str)]) -> Result<ExitCode, Failur
             )));
         }
     };
-    let exposure = match flag(flags, "exposure") {
-        Some(e) => e
-            .parse::<f32>()
-            .ok()
-            .filter(|x| x.is_finite())
-            .ok_or_else(|| {
-                Failure::Usage(format!("--exposure must be a finite number, got {e:?}"))
-            })?,
-        None => 0.0,
-    };
+    let exposure = reference_cmd::exposure_flag(flags)?;
     let scene = scratchwave_render::scene_file::read_scene(Path::new(file))?;
     let tty = std::io::stderr().is_terminal();
     let progress = |done: usize, total: usize| {

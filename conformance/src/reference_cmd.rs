@@ -44,6 +44,18 @@ fn bad_flag(name: &str, msg: impl Into<String>) -> SpecError {
     SpecError::field(format!("--{name}"), msg)
 }
 
+/// `--exposure EV` (default 0): a finite number, else an error naming the flag.
+pub fn exposure_flag(flags: &[(&str, &str)]) -> Result<f32, SpecError> {
+    match flag(flags, "exposure") {
+        Some(v) => v
+            .parse::<f32>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| bad_flag("exposure", format!("expected a finite number, got {v:?}"))),
+        None => Ok(0.0),
+    }
+}
+
 fn int_flag(
     flags: &[(&str, &str)],
     name: &str,
@@ -227,17 +239,7 @@ pub fn render_reference_command(file: &str, flags: &[(&str, &str)]) -> Result<()
         write_reference(Path::new(p), &scene.name, &r, &opts).map_err(|e| render_error(file, e))?;
     }
     if let Some(p) = flag(flags, "png") {
-        let exposure = match flag(flags, "exposure") {
-            Some(v) => v
-                .parse::<f32>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| {
-                    bad_flag("exposure", format!("expected a finite number, got {v:?}"))
-                })?,
-            None => 0.0,
-        };
-        scratchwave_render::output::write_png(Path::new(p), &r.mean, exposure)
+        scratchwave_render::output::write_png(Path::new(p), &r.mean, exposure_flag(flags)?)
             .map_err(|e| render_error(file, e))?;
     }
     eprintln!();
