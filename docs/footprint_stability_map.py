@@ -30,7 +30,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from ghs_stability_map import STOPS, cell, colour, read_dump, run_sweep_test  # noqa: E402
+from ghs_stability_map import bound_label, cell, colour, colour_bar, read_dump, run_sweep_test  # noqa: E402
 
 BEFORE = os.path.join(HERE, "footprint-stability-before.csv")
 SVG = os.path.join(HERE, "footprint-stability.svg")
@@ -132,16 +132,10 @@ def draw(before, after, model, path):
                    % (x0 - 40, y0 + yh / 2, x0 - 40, y0 + yh / 2))
     # legends: err/bound (top row) and model error (bottom row), the same colours
     bx = left + 2 * pw + gapx + 30
-    for row, title, fmt in ((0, "err/bound", lambda e: "1 (bound)" if e == 0 else "1e%d" % e),
+    for row, title, fmt in ((0, "err/bound", bound_label),
                             (1, "model error", lambda e: "1e%d" % (e + round(math.log10(MODEL_REF))))):
         by, bh = top + row * (ph + gapy) + 14, ph + 30
-        n = 70
-        for i in range(n):
-            x = STOPS[0][0] + (STOPS[-1][0] - STOPS[0][0]) * (i + 0.5) / n
-            out.append('<rect x="%d" y="%.2f" width="16" height="%.2f" fill="%s"/>' % (bx, by + bh - (i + 1) * bh / n, bh / n + 0.3, colour(10 ** x)))
-        for e in range(-3, 5):
-            y = by + bh - (e - STOPS[0][0]) / (STOPS[-1][0] - STOPS[0][0]) * bh
-            out.append('<text x="%d" y="%.1f" dominant-baseline="middle">%s</text>' % (bx + 20, y, fmt(e)))
+        out += colour_bar(bx, by, bh, fmt)
         out.append('<text x="%d" y="%d">%s</text>' % (bx - 4, by - 6, title))
     out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; aspect = a_major/a_minor; model error |Eq. 16/η_P − 1| of the exact values</text>' % (left, height - 12))
     out.append("</svg>")

@@ -111,6 +111,25 @@ def colour(ratio):
     return "rgb(0,0,0)"
 
 
+def bound_label(e):
+    """The colour bar's label at 10^e of err/bound."""
+    return "1 (bound)" if e == 0 else "1e%d" % e
+
+
+def colour_bar(bx, by, bh, label=bound_label):
+    """SVG lines of the vertical colour bar at (bx, by), bh tall, labelled at each decade
+    (every map uses it)."""
+    out = []
+    n = 70
+    for i in range(n):
+        x = STOPS[0][0] + (STOPS[-1][0] - STOPS[0][0]) * (i + 0.5) / n
+        out.append('<rect x="%d" y="%.2f" width="16" height="%.2f" fill="%s"/>' % (bx, by + bh - (i + 1) * bh / n, bh / n + 0.3, colour(10 ** x)))
+    for e in range(-3, 5):
+        y = by + bh - (e - STOPS[0][0]) / (STOPS[-1][0] - STOPS[0][0]) * bh
+        out.append('<text x="%d" y="%.1f" dominant-baseline="middle">%s</text>' % (bx + 20, y, label(e)))
+    return out
+
+
 def draw(before, after, path):
     cw, ch = 26, 14
     pw, ph = BX[2] * cw, TY[2] * ch
@@ -147,13 +166,7 @@ def draw(before, after, path):
                        % (x0 - 40, y0 + ph / 2, x0 - 40, y0 + ph / 2))
     # colour bar
     bx, by, bh = left + 2 * pw + gapx + 30, top + 14, 2 * ph + gapy - 20
-    n = 70
-    for i in range(n):
-        x = STOPS[0][0] + (STOPS[-1][0] - STOPS[0][0]) * (i + 0.5) / n
-        out.append('<rect x="%d" y="%.2f" width="16" height="%.2f" fill="%s"/>' % (bx, by + bh - (i + 1) * bh / n, bh / n + 0.3, colour(10 ** x)))
-    for e in range(-3, 5):
-        y = by + bh - (e - STOPS[0][0]) / (STOPS[-1][0] - STOPS[0][0]) * bh
-        out.append('<text x="%d" y="%.1f" dominant-baseline="middle">%s</text>' % (bx + 20, y, "1 (bound)" if e == 0 else "1e%d" % e))
+    out += colour_bar(bx, by, bh)
     out.append('<text x="%d" y="%d">err/bound</text>' % (bx - 4, by - 14))
     out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; tan θh = 0 is drawn in the lowest row</text>' % (left, height - 12))
     out.append("</svg>")

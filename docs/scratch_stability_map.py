@@ -29,7 +29,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from ghs_stability_map import STOPS, cell, colour, read_dump, run_sweep_test  # noqa: E402
+from ghs_stability_map import cell, colour, colour_bar, read_dump, run_sweep_test  # noqa: E402
 
 BEFORE = os.path.join(HERE, "scratch-stability-before.csv")
 SVG = os.path.join(HERE, "scratch-stability.svg")
@@ -119,13 +119,7 @@ def draw(before, after, path):
             out.append('<text x="%d" y="%.1f" text-anchor="middle" transform="rotate(-90 %d %.1f)">%s</text>'
                        % (x0 - 44, y0 + yh / 2, x0 - 44, y0 + yh / 2, yl))
     bx, by, bh = left + 2 * pw + gapx + 30, top + 14, 2 * ph + gapy - 20
-    n = 70
-    for i in range(n):
-        x = STOPS[0][0] + (STOPS[-1][0] - STOPS[0][0]) * (i + 0.5) / n
-        out.append('<rect x="%d" y="%.2f" width="16" height="%.2f" fill="%s"/>' % (bx, by + bh - (i + 1) * bh / n, bh / n + 0.3, colour(10 ** x)))
-    for e in range(-3, 5):
-        y = by + bh - (e - STOPS[0][0]) / (STOPS[-1][0] - STOPS[0][0]) * bh
-        out.append('<text x="%d" y="%.1f" dominant-baseline="middle">%s</text>' % (bx + 20, y, "1 (bound)" if e == 0 else "1e%d" % e))
+    out += colour_bar(bx, by, bh)
     out.append('<text x="%d" y="%d">err/bound</text>' % (bx - 4, by - 14))
     out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; depth and width are the first scratch&apos;s</text>' % (left, height - 12))
     out.append("</svg>")
