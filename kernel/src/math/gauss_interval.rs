@@ -87,17 +87,7 @@ pub fn gauss_fourier_centered(mid: f32, half: f32, sigma: f32, nu: f32) -> C32 {
     );
     let (need_a, need_b) = (ga > NEGLIGIBLE * big, gb > NEGLIGIBLE * big);
     let zero = C32::new(0.0, 0.0);
-    // Both Faddeeva evaluations in one two-lane call when both ends matter.
-    let (wa, wb) = if need_a && need_b {
-        let w = faddeeva_lanes([endpoint_arg(xa, y), endpoint_arg(xb, y)]);
-        (w[0], w[1])
-    } else if need_a {
-        (faddeeva(endpoint_arg(xa, y)), zero)
-    } else if need_b {
-        (zero, faddeeva(endpoint_arg(xb, y)))
-    } else {
-        (zero, zero)
-    };
+    let (wa, wb) = endpoint_faddeeva(endpoint_arg(xa, y), endpoint_arg(xb, y), need_a, need_b);
     // The phases e^{−2πiνa}, e^{−2πiνb} of the end terms. On one side of the window's
     // centre the ends may lie far out (|m| ≫ h) and the two terms nearly cancel (the
     // integrand is almost a pure oscillation there): rounding 2νa and 2νb separately would
@@ -126,6 +116,40 @@ pub fn gauss_fourier_centered(mid: f32, half: f32, sigma: f32, nu: f32) -> C32 {
         C32::new(centre, 0.0) - ea - eb
     };
     cscale(diff, sigma * SQRT_PI_OVER_2)
+}
+
+/// `w` at both endpoint arguments, where needed (an unneeded one is multiplied by zero).
+///
+/// On the CPU only the needed ends are evaluated, both in one two-lane call when both
+/// matter: a long segment whose ends lie outside the window then costs no Faddeeva call.
+#[cfg(not(target_arch = "spirv"))]
+#[inline]
+fn endpoint_faddeeva(za: C32, zb: C32, need_a: bool, need_b: bool) -> (C32, C32) {
+    let zero = C32::new(0.0, 0.0);
+    if need_a && need_b {
+        let w = faddeeva_lanes([za, zb]);
+        (w[0], w[1])
+    } else if need_a {
+        (faddeeva(za), zero)
+    } else if need_b {
+        (zero, faddeeva(zb))
+    } else {
+        (zero, zero)
+    }
+}
+
+/// `w` at both endpoint arguments, always both in one two-lane call.
+///
+/// On SPIR-V the Faddeeva loop must not sit in a branch that neighbouring invocations take
+/// differently: with the CPU's choice of calls above, lavapipe (Mesa 22.3) returned values
+/// for a footprint average that depended on the other footprints of its SIMD group (2.4e-3
+/// off in `backend-spirv/tests/table.rs`, right when evaluated alone). Evaluating both ends
+/// unconditionally keeps the control flow uniform; the callers discard an unneeded end.
+#[cfg(target_arch = "spirv")]
+#[inline]
+fn endpoint_faddeeva(za: C32, zb: C32, _need_a: bool, _need_b: bool) -> (C32, C32) {
+    let w = faddeeva_lanes([za, zb]);
+    (w[0], w[1])
 }
 
 /// √(π/2).
