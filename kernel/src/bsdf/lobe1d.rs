@@ -79,14 +79,78 @@ impl Lobe1 {
             return 0.0;
         }
         let s = self.scale[j];
-        let z = (x - self.mu[j]) / s;
+        self.density_std((x - self.mu[j]) / s) / s
+    }
+
+    /// Density `F'(z)` of the standardised component.
+    #[inline]
+    fn density_std(&self, z: f32) -> f32 {
         match self.kind {
             Lobe1Kind::Logistic => {
                 let e = math::exp(-math::abs(z));
-                e / (s * (1.0 + e) * (1.0 + e))
+                e / ((1.0 + e) * (1.0 + e))
             }
-            Lobe1Kind::Cauchy => 1.0 / (math::PI * s * (1.0 + z * z)),
-            Lobe1Kind::Gaussian => math::exp(-0.5 * z * z) * (FRAC_1_SQRT_TAU / s),
+            Lobe1Kind::Cauchy => 1.0 / (math::PI * (1.0 + z * z)),
+            Lobe1Kind::Gaussian => math::exp(-0.5 * z * z) * FRAC_1_SQRT_TAU,
+        }
+    }
+
+    /// `F(zb) − F(za)` of the standardised component, with `d = zb − za` formed from the
+    /// interval's own ends (`(b − a)/s`: its width keeps its digits however far out it
+    /// lies).
+    ///
+    /// Forms without the difference of two nearly equal CDF values where it would cancel:
+    /// the logistic's exact `F(za) F(−zb) (e^d − 1)` for `d < 1`; the Cauchy's
+    /// `atan(d/(1 + za zb))/π` wherever `za zb > −1`; for a [`narrow`] Gaussian interval
+    /// the Gaussian interval integral of Werner App. A ([`math::gauss_interval_centered`]).
+    /// Otherwise the CDFs on their small sides, whose difference then cancels by at most a
+    /// factor of about 2.5 (the logistic's and the Gaussian's tails fall by `e^{−1}` or more
+    /// across the interval; a Cauchy interval with `za zb ≤ −1` straddles the centre with
+    /// one end at `|z| ≥ 1`, so its mass exceeds ¼).
+    #[inline]
+    fn std_mass(&self, za: f32, zb: f32, d: f32) -> f32 {
+        let m = match self.kind {
+            Lobe1Kind::Logistic => {
+                if d < 1.0 {
+                    self.cdf_low(za) * self.cdf_low(-zb) * math::expm1(d)
+                } else {
+                    self.std_mass_wide(za, zb)
+                }
+            }
+            Lobe1Kind::Cauchy => {
+                if za * zb > -1.0 {
+                    math::atan(d / (1.0 + za * zb)) * (1.0 / math::PI)
+                } else {
+                    self.std_mass_wide(za, zb)
+                }
+            }
+            Lobe1Kind::Gaussian => {
+                let use_near = narrow(self.kind, za, zb, d);
+                let half = 0.5 * d;
+                let near = if use_near || UNIFORM_CONTROL {
+                    math::gauss_interval_centered(za + half, half, 1.0) * FRAC_1_SQRT_TAU
+                } else {
+                    0.0
+                };
+                if use_near {
+                    near
+                } else {
+                    self.std_mass_wide(za, zb)
+                }
+            }
+        };
+        math::max(m, 0.0)
+    }
+
+    /// `F(zb) − F(za)` from the CDFs on their small sides.
+    #[inline]
+    fn std_mass_wide(&self, za: f32, zb: f32) -> f32 {
+        if zb <= 0.0 {
+            self.cdf_low(zb) - self.cdf_low(za)
+        } else if za >= 0.0 {
+            self.cdf_low(-za) - self.cdf_low(-zb)
+        } else {
+            1.0 - self.cdf_low(za) - self.cdf_low(-zb)
         }
     }
 
@@ -138,14 +202,7 @@ impl Lobe1 {
         let s = self.scale[j];
         let za = (a - self.mu[j]) / s;
         let zb = (b - self.mu[j]) / s;
-        let m = if zb <= 0.0 {
-            self.cdf_low(zb) - self.cdf_low(za)
-        } else if za >= 0.0 {
-            self.cdf_low(-za) - self.cdf_low(-zb)
-        } else {
-            1.0 - self.cdf_low(za) - self.cdf_low(-zb)
-        };
-        math::max(m, 0.0)
+        self.std_mass(za, zb, (b - a) / s)
     }
 
     /// Total weighted mass on `[a, b]`: `Σ w_j m_j(a, b)`.
@@ -225,6 +282,27 @@ impl Lobe1 {
         let (mu, s) = (self.mu[j], self.scale[j]);
         let za = (a - mu) / s;
         let zb = (b - mu) / s;
+        let d = (b - a) / s;
+        // A narrow interval: Newton's method on the offset `t` from `a` (in units of s) for
+        // `F(za + t) − F(za) = v m`, from the linear guess `t = v d`. The inversion below
+        // would lose the digits of `m` to the difference of two nearly equal CDF values and
+        // those of `x − a` to the rounding of `μ + s z`. Three steps: the density varies by
+        // less than a factor e across the interval. On SPIR-V it runs for every interval
+        // and the result is selected at the end ([`UNIFORM_CONTROL`]).
+        let is_narrow = narrow(self.kind, za, zb, d);
+        let x_narrow = if is_narrow || UNIFORM_CONTROL {
+            let target = v * self.std_mass(za, zb, d);
+            let mut t = v * d;
+            let mut k = 0;
+            while k < 3 {
+                let step = (self.std_mass(za, za + t, t) - target) / self.density_std(za + t);
+                t = math::clamp(t - step, 0.0, d);
+                k += 1;
+            }
+            a + s * t
+        } else {
+            a
+        };
         // An interval wholly right of the centre is read mirrored, in the left tail, where
         // the CDF is small and keeps its relative accuracy.
         let flip = za >= 0.0;
@@ -251,7 +329,24 @@ impl Lobe1 {
             -self.inv_low(math::max((1.0 - v) * width + tail_hi, 0.0))
         };
         let z = if flip { -z } else { z };
-        mu + s * z
+        if is_narrow { x_narrow } else { mu + s * z }
+    }
+}
+
+/// Whether a branch holding a loop (the Gaussian interval integral, the Newton steps) is
+/// evaluated for every input and its result selected: on SPIR-V, where such a branch taken
+/// differently by neighbouring invocations returned wrong values on lavapipe
+/// (ARCHITECTURE.md *Divergence*); on the CPU only where its result is used.
+const UNIFORM_CONTROL: bool = cfg!(target_arch = "spirv");
+
+/// Whether the standardised interval `[za, zb]` of width `d` is narrow: every lobe's
+/// log-density varies by less than 1 across it. The logistic's and the Cauchy's log-density
+/// slopes are at most 1 (`d < 1`); the Gaussian's is `|z|` (`d (1 + |za| + |zb|) < 1`).
+#[inline]
+fn narrow(kind: Lobe1Kind, za: f32, zb: f32, d: f32) -> bool {
+    match kind {
+        Lobe1Kind::Gaussian => d * (1.0 + math::abs(za) + math::abs(zb)) < 1.0,
+        Lobe1Kind::Logistic | Lobe1Kind::Cauchy => d < 1.0,
     }
 }
 
