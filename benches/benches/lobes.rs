@@ -6,19 +6,15 @@
 //! scales off the centre), where the inverse CDF refines by Newton's method.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use scratchwave_benches::Rng;
 use scratchwave_kernel::bsdf::lobe1d::{Lobe1, Lobe1Kind};
 use std::hint::black_box;
 use std::time::Duration;
 
-/// `n` (lobe, u, a, b) draws from a fixed xorshift sequence.
+/// `n` (lobe, u, a, b) draws from a fixed seed.
 fn cases(kind: Lobe1Kind, narrow: bool, n: usize) -> Vec<(Lobe1, f32, f32, f32)> {
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 40) as f32 / (1u64 << 24) as f32
-    };
+    let mut r = Rng::new(17);
+    let mut next = move || r.next_f32();
     (0..n)
         .map(|_| {
             let scale = 10f32.powf(-3.0 + 3.0 * next());
