@@ -170,10 +170,11 @@ impl Queries<'_> {
                     l.len()
                 )));
             }
-            if let Some(bad) = l.iter().position(|x| !(x.is_finite() && *x > 0.0)) {
+            let lambda = scratchwave_spec::range::LAMBDA_NM;
+            if let Some(bad) = l.iter().position(|x| !lambda.contains(f64::from(*x))) {
                 return Err(Error::arg(format!(
-                    "lambda_nm[{bad}]: must be a positive finite wavelength (nm), got {}",
-                    l[bad]
+                    "lambda_nm[{bad}]: must be in {}, got {}",
+                    lambda.text, l[bad]
                 )));
             }
         }

@@ -231,6 +231,16 @@ fn bad_footprint_specs_name_the_field() {
         ),
         "queries[0].ellipse.a1",
     );
+    // σ beyond the spec's range: Eq. 15's σ³ overflowed f32 at 1.1e24 (fuzz find).
+    for sigma in ["1.1e24", "1e-30"] {
+        rejects(
+            "footprint",
+            &format!(
+                r#"{{"sigma_um": {sigma}, "scratches": {s}, "queries": [{{"scratch": 0, "ellipse": {e}}}]}}"#
+            ),
+            "sigma_um: must be in [1e-3, 1e6]",
+        );
+    }
 }
 
 #[test]

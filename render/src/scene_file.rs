@@ -9,7 +9,7 @@ use crate::scene::{
 use scratchwave_kernel::render::camera::{Camera, Projection};
 use scratchwave_kernel::render::spectrum::SpectrumMode;
 use scratchwave_spec::json::{self, Obj};
-use scratchwave_spec::{SpecError, spec};
+use scratchwave_spec::{SpecError, range, spec};
 use serde_json::Value;
 use std::collections::HashMap;
 use std::path::Path;
@@ -715,14 +715,7 @@ fn spectrum(v: Option<&Value>) -> Result<Spectrum, SpecError> {
     only("lambda_nm", SpectrumMode::Single, "single")?;
     only("samples", SpectrumMode::Spectral, "spectral")?;
     let lambda_nm = if mode == SpectrumMode::Single {
-        let l = o.num("lambda_nm")?;
-        if !(100.0..=10000.0).contains(&l) {
-            return Err(SpecError::field(
-                o.path_of("lambda_nm"),
-                format!("must be in [100, 10000] nm, got {l}"),
-            ));
-        }
-        l as f32
+        range::LAMBDA_NM.check(o.num("lambda_nm")?, &o.path_of("lambda_nm"))?
     } else {
         550.0
     };

@@ -4,6 +4,7 @@
 //! out-of-range field is a [`SpecError`] naming its JSON path (e.g. `queries[3].wi`).
 //!
 //! - [`json`]: the field-checking object reader and number conversions;
+//! - [`range`]: the accepted ranges of σ, λ, scratch width and depth, footprint axes;
 //! - [`spec`]: table and footprint specs → the batches of `scratchwave-host`;
 //! - [`light`]: the light spec of `scratchwave light` → kernel light records;
 //! - [`material`]: a scene material (model, reflectance, options, base, scratches) → the
@@ -15,6 +16,7 @@ pub mod error;
 pub mod json;
 pub mod light;
 pub mod material;
+pub mod range;
 pub mod scratches;
 pub mod spec;
 

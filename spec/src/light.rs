@@ -24,6 +24,7 @@
 
 use crate::SpecError;
 use crate::json::{self, Obj};
+use crate::range;
 use crate::spec::table_spec;
 use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, MAX_VERTICES};
 use scratchwave_kernel::scratch::Scratch;
@@ -112,7 +113,7 @@ pub fn light_spec(v: &Value) -> Result<LightSpec, SpecError> {
         let path = format!("queries[{i}]");
         let q = Obj::new(q, &path, &["wo", "lambda_nm", "x", "light"])?;
         let wo = unit(q.vec::<3>("wo")?, &q.path_of("wo"))?;
-        let lambda_nm = json::positive(q.num("lambda_nm")?, &q.path_of("lambda_nm"), false)?;
+        let lambda_nm = range::LAMBDA_NM.check(q.num("lambda_nm")?, &q.path_of("lambda_nm"))?;
         let x = q.vec::<2>("x")?;
         let x = [
             json::to_f32(x[0], &q.path_of("x"))?,

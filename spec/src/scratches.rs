@@ -7,6 +7,7 @@
 
 use crate::error::SpecError;
 use crate::json::{self, Obj};
+use crate::range;
 use crate::spec::{point64, scratch, segment};
 use scratchwave_host::pattern::{
     Count, Distribution, MAX_SEGMENTS, Orientation, PatternError, ProfileChoice, ScratchPattern,
@@ -209,8 +210,8 @@ pub fn scratch_from_row(x: [f64; 6], profile: Profile, prefix: &str) -> Result<S
             json::to_f32(*v, &name(k))?;
         }
     }
-    let width = json::positive(x[4], &name(4), true)?;
-    let depth = json::positive(x[5], &name(5), true)?;
+    let width = range::WIDTH_UM.check(x[4], &name(4))?;
+    let depth = range::DEPTH_UM.check(x[5], &name(5))?;
     segment([x[0], x[1]], [x[2], x[3]], width, depth, profile, &name(2))
 }
 
@@ -273,8 +274,8 @@ fn pattern(v: &Value, gp: &str) -> Result<(ScratchPattern, u64), SpecError> {
         Some(o) => orientation(o, &g.path_of("orientation"))?,
         None => Orientation::Random,
     };
-    let width = distribution(&g, "width", true, 1.0e7, 1.0)?;
-    let depth = distribution(&g, "depth", true, 1.0e7, 1.0)?;
+    let width = distribution(&g, "width", true, range::WIDTH_UM.hi, 1.0)?;
+    let depth = distribution(&g, "depth", true, range::DEPTH_UM.hi, 1.0)?;
     let profile = match g.opt_choice("profile", &["rect", "triangle", "alternate"])? {
         Some("triangle") => ProfileChoice::Only(Profile::Triangle),
         Some("alternate") => ProfileChoice::Alternate,

@@ -3,6 +3,7 @@
 
 use crate::error::SpecError;
 use crate::json::{self, Obj};
+use crate::range;
 use scratchwave_host::{FootprintBatch, TableBatch};
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::ghs::layers::LayerForm;
@@ -264,7 +265,7 @@ fn grid(top: &Obj, need_x: bool, material: Option<Material>) -> Result<QueryGrid
         .enumerate()
         .map(|(i, l)| {
             let path = format!("{}[{i}]", g.path_of("lambda_nm"));
-            json::positive(json::number(l, &path)?, &path, false)
+            range::LAMBDA_NM.check(json::number(l, &path)?, &path)
         })
         .collect::<Result<Vec<f32>, SpecError>>()?;
     let x = if need_x || g.get("x").is_some() {
@@ -325,7 +326,7 @@ fn query_list(
         let q = Obj::new(q, &path, &["wi", "wo", "lambda_nm", "x", "material"])?;
         let wi = direction(&q, "wi")?;
         let wo = direction(&q, "wo")?;
-        let lambda_nm = json::positive(q.num("lambda_nm")?, &q.path_of("lambda_nm"), false)?;
+        let lambda_nm = range::LAMBDA_NM.check(q.num("lambda_nm")?, &q.path_of("lambda_nm"))?;
         let x = if need_x || q.get("x").is_some() {
             point(&q, "x")?
         } else {
@@ -506,8 +507,8 @@ pub fn footprint_spec(v: &Value) -> Result<FootprintBatch, SpecError> {
         let ellipse = Ellipse {
             center: point(&e, "center")?,
             angle_rad: json::to_f32(e.num("angle_rad")?, &e.path_of("angle_rad"))?,
-            a1: json::positive(e.num("a1")?, &e.path_of("a1"), false)?,
-            a2: json::positive(e.num("a2")?, &e.path_of("a2"), false)?,
+            a1: range::ELLIPSE_AXIS_UM.check(e.num("a1")?, &e.path_of("a1"))?,
+            a2: range::ELLIPSE_AXIS_UM.check(e.num("a2")?, &e.path_of("a2"))?,
             ..Ellipse::default()
         };
         queries.push((scratch, ellipse));
@@ -515,10 +516,10 @@ pub fn footprint_spec(v: &Value) -> Result<FootprintBatch, SpecError> {
     Ok(FootprintBatch { sigma_um, queries })
 }
 
-/// `sigma_um` of `top` (default [`DEFAULT_SIGMA_UM`]), > 0.
+/// `sigma_um` of `top` (default [`DEFAULT_SIGMA_UM`]), in [`range::SIGMA_UM`].
 pub fn sigma(top: &Obj) -> Result<f32, SpecError> {
     match top.opt_num("sigma_um")? {
-        Some(s) => json::positive(s, &top.path_of("sigma_um"), false),
+        Some(s) => range::SIGMA_UM.check(s, &top.path_of("sigma_um")),
         None => Ok(DEFAULT_SIGMA_UM),
     }
 }
@@ -547,8 +548,8 @@ pub(crate) fn scratch(v: &Value, path: &str) -> Result<Scratch, SpecError> {
         _ => Profile::Rect,
     };
     let (p0, p1) = (point64(&s, "p0")?, point64(&s, "p1")?);
-    let width = json::positive(s.num("width")?, &s.path_of("width"), true)?;
-    let depth = json::positive(s.num("depth")?, &s.path_of("depth"), true)?;
+    let width = range::WIDTH_UM.check(s.num("width")?, &s.path_of("width"))?;
+    let depth = range::DEPTH_UM.check(s.num("depth")?, &s.path_of("depth"))?;
     segment(p0, p1, width, depth, profile, &s.path_of("p1"))
 }
 
