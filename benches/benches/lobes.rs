@@ -3,11 +3,15 @@
 //! Samples/s of the scratch models' one-dimensional sampling lobes (`bsdf::lobe1d`): each
 //! kind on the intervals the disk-product lobes use (a chord of the unit disk around the
 //! centre, scales 1e-3 – 1) and on narrow intervals (width 1e-3 of the scale, up to 3
-//! scales off the centre), where the inverse CDF refines by Newton's method.
+//! scales off the centre), where the inverse CDF refines by Newton's method. And Werner
+//! §5's von Mises–Fisher ring (`bsdf::lobes::vmf_ring_sample`, `vmf_ring_pdf`) at
+//! concentrations 1e-5 – 1e7 (log-uniform), directions above the surface at random.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use glam::{Vec2, Vec3};
 use scratchwave_benches::Rng;
 use scratchwave_kernel::bsdf::lobe1d::{Lobe1, Lobe1Kind};
+use scratchwave_kernel::bsdf::lobes::{vmf_ring_pdf, vmf_ring_sample};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -59,5 +63,58 @@ fn lobes(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, lobes);
+/// A direction above the surface, cosθ uniform in [0.005, 1].
+fn above(next: &mut impl FnMut() -> f32) -> Vec3 {
+    let z = 0.005 + 0.995 * next();
+    let phi = std::f32::consts::TAU * next();
+    let s = (1.0 - z * z).sqrt();
+    Vec3::new(s * phi.cos(), s * phi.sin(), z)
+}
+
+/// `n` (tangent, κ, wo, wi, u_ring, u) draws from a fixed seed.
+#[allow(clippy::type_complexity)]
+fn ring_cases(n: usize) -> Vec<(Vec2, f32, Vec3, Vec3, f32, Vec2)> {
+    let mut r = Rng::new(23);
+    let mut next = move || r.next_f32();
+    (0..n)
+        .map(|_| {
+            let phi = std::f32::consts::TAU * next();
+            let t = Vec2::new(phi.cos(), phi.sin());
+            let kappa = 10f32.powf(-5.0 + 12.0 * next());
+            let (wo, wi) = (above(&mut next), above(&mut next));
+            (t, kappa, wo, wi, next(), Vec2::new(next(), next()))
+        })
+        .collect()
+}
+
+fn vmf_ring(c: &mut Criterion) {
+    let mut g = c.benchmark_group("vmf_ring");
+    g.sample_size(20)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2));
+    let n = 4096;
+    g.throughput(Throughput::Elements(n as u64));
+    let cs = ring_cases(n);
+    g.bench_function("sample", |bench| {
+        bench.iter(|| {
+            let mut acc = 0.0f32;
+            for (t, k, wo, _, ur, u) in &cs {
+                acc += vmf_ring_sample(*t, *k, *wo, *ur, *u).map_or(0.0, |d| d.z);
+            }
+            black_box(acc)
+        })
+    });
+    g.bench_function("pdf", |bench| {
+        bench.iter(|| {
+            let mut acc = 0.0f32;
+            for (t, k, wo, wi, _, _) in &cs {
+                acc += vmf_ring_pdf(*t, *k, *wo, *wi);
+            }
+            black_box(acc)
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, lobes, vmf_ring);
 criterion_main!(benches);

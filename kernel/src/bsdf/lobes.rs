@@ -128,13 +128,38 @@ pub fn vmf_ring_sample(t: Vec2, kappa: f32, wo: Vec3, u_ring: f32, u: Vec2) -> O
     let t3 = Vec3::new(t.x, t.y, 0.0);
     let (a1, a2) = (Vec3::Z, t3.cross(Vec3::Z));
     let co = wo.dot(t3);
-    let so = math::sqrt0((1.0 - co) * (1.0 + co));
+    let so = sin_from(t, wo);
     let (sp, cp) = math::sin_cos(math::TAU * u_ring);
     let mu = t3 * (-co) + (a1 * cp + a2 * sp) * so;
-    // vMF about mu: w = 1 + ln(v + (1 − v) e^{−2κ})/κ.
-    let w = 1.0 + math::ln(u.x + (1.0 - u.x) * math::exp(-2.0 * kappa)) / kappa;
-    let w = math::clamp(w, -1.0, 1.0);
-    let sw = math::sqrt0((1.0 - w) * (1.0 + w));
+    // vMF about mu: w = 1 + ln(v + (1 − v) e^{−2κ})/κ, formed as 1 − w = −ln(·)/κ, the
+    // logarithm's argument a sum of positives where it is below 1/2 and 1 + (1 − v)
+    // expm1(−2κ) through ln1p above: `1 + ln(·)/κ` kept only ~1e-7 of 1 − w for κ ~ 10⁷ (0.65
+    // of the lobe's width off), and `ln` near 1 lost the small-κ digits (issue #20,
+    // `kernel/tests/vmf_ring_domain_sweep.rs`).
+    let v = u.x;
+    let arg = v + (1.0 - v) * math::exp(-2.0 * kappa);
+    let omw = if !(arg > 0.0) {
+        2.0
+    } else if arg < 0.5 {
+        -math::ln(arg) / kappa
+    } else {
+        -math::ln1p((1.0 - v) * math::expm1(-2.0 * kappa)) / kappa
+    };
+    let omw = math::clamp(omw, 0.0, 2.0);
+    // 1 + w where w nears −1 (v → 0 at small κ): ln(v e^{2κ} + 1 − v)/κ, not 2 − (1 − w).
+    let opw = if omw <= 1.0 {
+        2.0 - omw
+    } else if !(v > 0.0) {
+        0.0
+    } else if kappa <= 44.0 {
+        math::ln1p(v * math::expm1(2.0 * kappa)) / kappa
+    } else {
+        // e^{2κ} overflows; 1 − w > 1 needs v < e^{−κ} here, so v e^{2κ} ≫ 1.
+        (math::ln(v) + 2.0 * kappa) / kappa
+    };
+    let opw = math::clamp(opw, 0.0, 2.0);
+    let w = if omw <= 1.0 { 1.0 - omw } else { opw - 1.0 };
+    let sw = math::sqrt0(omw * opw);
     let (b1, b2) = orthonormal(mu);
     let (sq, cq) = math::sin_cos(math::TAU * u.y);
     let mut d = mu * w + (b1 * cq + b2 * sq) * sw;
@@ -155,11 +180,23 @@ pub fn vmf_ring_pdf(t: Vec2, kappa: f32, wo: Vec3, wi: Vec3) -> f32 {
     let t3 = Vec3::new(t.x, t.y, 0.0);
     let co = wo.dot(t3);
     let c = wi.dot(t3);
-    let so = math::sqrt0((1.0 - co) * (1.0 + co));
-    let s = math::sqrt0((1.0 - c) * (1.0 + c));
+    let so = sin_from(t, wo);
+    let s = sin_from(t, wi);
     let x = kappa * so * s;
     let norm = kappa / (math::TAU * -math::expm1(-2.0 * kappa));
-    2.0 * norm * math::exp(-kappa * (1.0 + co * c - so * s)) * math::bessel_i0e(x)
+    // 1 + cosθo cosθ − sinθo sinθ = |(cosθ, sinθ) − (−cosθo, sinθo)|²/2: no cancellation on
+    // the ring, where κ ~ 10⁷ multiplies it (the difference form was 140 % off there).
+    let (dc, ds) = (c + co, s - so);
+    let e = 0.5 * (dc * dc + ds * ds);
+    2.0 * norm * math::exp(-kappa * e) * math::bessel_i0e(x)
+}
+
+/// Sine of the angle between unit `w` and the in-plane unit tangent `t`, from `w`'s
+/// components across `t` (`sqrt(1 − cos²)` loses its digits where `w` nears `±t`).
+#[inline]
+fn sin_from(t: Vec2, w: Vec3) -> f32 {
+    let across = t.x * w.y - t.y * w.x;
+    math::sqrt(across * across + w.z * w.z)
 }
 
 /// Two unit vectors completing unit `n` to an orthonormal basis (Duff et al. 2017).
