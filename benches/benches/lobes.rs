@@ -5,13 +5,15 @@
 //! centre, scales 1e-3 – 1) and on narrow intervals (width 1e-3 of the scale, up to 3
 //! scales off the centre), where the inverse CDF refines by Newton's method. And Werner
 //! §5's von Mises–Fisher ring (`bsdf::lobes::vmf_ring_sample`, `vmf_ring_pdf`) at
-//! concentrations 1e-5 – 1e7 (log-uniform), directions above the surface at random.
+//! concentrations 1e-5 – 1e7 (log-uniform), and the disk lobes (`bsdf::lobes::DiskLobe`:
+//! the base Gaussian², scales 4e-4 – 0.1; a scratch's logistic × Cauchy), directions above
+//! the surface at random.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use glam::{Vec2, Vec3};
 use scratchwave_benches::Rng;
 use scratchwave_kernel::bsdf::lobe1d::{Lobe1, Lobe1Kind};
-use scratchwave_kernel::bsdf::lobes::{vmf_ring_pdf, vmf_ring_sample};
+use scratchwave_kernel::bsdf::lobes::{DiskLobe, vmf_ring_pdf, vmf_ring_sample};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -116,5 +118,63 @@ fn vmf_ring(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, lobes, vmf_ring);
+/// `n` (lobe, wo, wi, u) draws from a fixed seed: base lobes or scratch lobes.
+fn disk_cases(scratch: bool, n: usize) -> Vec<(DiskLobe, Vec3, Vec3, Vec2)> {
+    let mut r = Rng::new(29);
+    let mut next = move || r.next_f32();
+    (0..n)
+        .map(|_| {
+            let lobe = if scratch {
+                let phi = std::f32::consts::TAU * next();
+                DiskLobe {
+                    e1: Vec2::new(phi.cos(), phi.sin()),
+                    l1: Lobe1::single(Lobe1Kind::Logistic, 0.0, 10f32.powf(-3.7 + 5.7 * next())),
+                    l2: Lobe1::single(Lobe1Kind::Cauchy, 0.0, 10f32.powf(-2.6 + 3.0 * next())),
+                }
+            } else {
+                let l = Lobe1::single(Lobe1Kind::Gaussian, 0.0, 10f32.powf(-3.4 + 2.4 * next()));
+                DiskLobe {
+                    e1: Vec2::X,
+                    l1: l,
+                    l2: l,
+                }
+            };
+            let (wo, wi) = (above(&mut next), above(&mut next));
+            (lobe, wo, wi, Vec2::new(next(), next()))
+        })
+        .collect()
+}
+
+fn disk_lobe(c: &mut Criterion) {
+    let mut g = c.benchmark_group("disk_lobe");
+    g.sample_size(20)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2));
+    let n = 4096;
+    g.throughput(Throughput::Elements(n as u64));
+    for (name, scratch) in [("base", false), ("scratch", true)] {
+        let cs = disk_cases(scratch, n);
+        g.bench_with_input(BenchmarkId::new("sample", name), &cs, |bench, cs| {
+            bench.iter(|| {
+                let mut acc = 0.0f32;
+                for (l, wo, _, u) in cs {
+                    acc += l.sample(*wo, *u).map_or(0.0, |d| d.z);
+                }
+                black_box(acc)
+            })
+        });
+        g.bench_with_input(BenchmarkId::new("pdf", name), &cs, |bench, cs| {
+            bench.iter(|| {
+                let mut acc = 0.0f32;
+                for (l, wo, wi, _) in cs {
+                    acc += l.pdf(*wo, *wi);
+                }
+                black_box(acc)
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, lobes, vmf_ring, disk_lobe);
 criterion_main!(benches);

@@ -237,10 +237,21 @@ impl Lobe1 {
         d / total
     }
 
-    /// Draws `x` from the mixture truncated to `[a, b]`: the component `j` with probability
-    /// `w_j m_j / Σ w m` (from `u`, rescaled), then its truncated inverse CDF. `None` when
-    /// the interval carries no mass.
-    pub fn sample(&self, u: f32, a: f32, b: f32) -> Option<f32> {
+    /// The same mixture moved by `dx` (every centre plus `dx`).
+    pub fn shifted(&self, dx: f32) -> Lobe1 {
+        let mut l = *self;
+        let mut j = 0;
+        while j < LOBE1_MAX {
+            l.mu[j] += dx;
+            j += 1;
+        }
+        l
+    }
+
+    /// The component drawn by `u` on `[a, b]` (probability `w_j m_j / Σ w m`) and `u`
+    /// rescaled within it; `None` when the interval carries no mass.
+    #[inline]
+    fn pick(&self, u: f32, a: f32, b: f32) -> Option<(usize, f32)> {
         let total = self.mass(a, b);
         if !(total > 0.0) || !total.is_finite() {
             return None;
@@ -268,9 +279,75 @@ impl Lobe1 {
         if !(pick_mass > 0.0) || pick >= LOBE1_MAX {
             return None;
         }
-        let v = math::clamp((target - below) / pick_mass, 0.0, 1.0);
-        let x = self.sample_one(pick, v, a, b);
-        Some(math::clamp(x, a, b))
+        Some((pick, math::clamp((target - below) / pick_mass, 0.0, 1.0)))
+    }
+
+    /// Draws `x` from the mixture truncated to `[a, b]`: the component `j` with probability
+    /// `w_j m_j / Σ w m` (from `u`, rescaled), then its truncated inverse CDF. `None` when
+    /// the interval carries no mass.
+    pub fn sample(&self, u: f32, a: f32, b: f32) -> Option<f32> {
+        let (j, v) = self.pick(u, a, b)?;
+        Some(math::clamp(self.sample_one(j, v, a, b), a, b))
+    }
+
+    /// [`Lobe1::sample`] with the sample's distances from both ends, `(x, x − a, b − x)`,
+    /// each keeping its digits where it is small: `x` itself resolves an offset only to
+    /// its own ulp, so an offset within a scale of its end is refined by Newton's method
+    /// on the component's mass between the end and the sample (`v m` from `a`, `(1 − v) m`
+    /// from `b`), as for a narrow interval. The disk lobes need them at the rim, where
+    /// `wi.z` is the square root of their product.
+    pub fn sample_ends(&self, u: f32, a: f32, b: f32) -> Option<(f32, f32, f32)> {
+        let (j, v) = self.pick(u, a, b)?;
+        let x = math::clamp(self.sample_one(j, v, a, b), a, b);
+        let (mu, s) = (self.mu[j], self.scale[j]);
+        let za = (a - mu) / s;
+        let zb = (b - mu) / s;
+        let d = (b - a) / s;
+        let m = self.std_mass(za, zb, d);
+        let far = math::abs(x - mu);
+        let from_a = self.end_offset(za, 1.0, x - a, far, s, v * m, d);
+        let from_b = self.end_offset(zb, -1.0, b - x, far, s, (1.0 - v) * m, d);
+        Some((x, from_a, from_b))
+    }
+
+    /// The offset from the standardised end `z0` inwards (`dir` +1 from the lower end, −1
+    /// from the upper) holding the component mass `target`, from the plain offset `off0`
+    /// of a sample `far` from its component's centre: refined by three Newton steps on
+    /// `t = off/s` within a scale of the end (the density varies by less than a factor e
+    /// there for the logistic and the Cauchy, and the Gaussian's mass is the narrow
+    /// interval integral) and, for the logistic and the Cauchy, wherever the offset is
+    /// below a quarter of `far` (the sample `μ + s z` then carried the rounding of the
+    /// larger `s z` into the offset; their masses between the end and the sample keep
+    /// their digits at any width, [`Lobe1::std_mass`]); otherwise `off0`.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn end_offset(
+        &self,
+        z0: f32,
+        dir: f32,
+        off0: f32,
+        far: f32,
+        s: f32,
+        target: f32,
+        d: f32,
+    ) -> f32 {
+        let t0 = off0 / s;
+        let refine = t0 < 1.0 || (self.kind != Lobe1Kind::Gaussian && off0 < 0.25 * far);
+        if !(refine || UNIFORM_CONTROL) {
+            return off0;
+        }
+        let mut t = math::clamp(t0, 0.0, d);
+        let mut k = 0;
+        while k < 3 {
+            let z1 = z0 + dir * t;
+            let (lo, hi) = if dir > 0.0 { (z0, z1) } else { (z1, z0) };
+            let step = (self.std_mass(lo, hi, t) - target) / self.density_std(z1);
+            if step.is_finite() {
+                t = math::clamp(t - step, 0.0, d);
+            }
+            k += 1;
+        }
+        if refine { s * t } else { off0 }
     }
 
     /// Truncated inverse CDF of component `j` at `v ∈ [0, 1]`.
