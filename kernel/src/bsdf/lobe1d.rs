@@ -292,9 +292,9 @@ impl Lobe1 {
 
     /// [`Lobe1::sample`] with the sample's distances from both ends, `(x, x − a, b − x)`,
     /// each keeping its digits where it is small: `x` itself resolves an offset only to
-    /// its own ulp, so an offset within a scale of its end is refined by Newton's method
-    /// on the component's mass between the end and the sample (`v m` from `a`, `(1 − v) m`
-    /// from `b`), as for a narrow interval. The disk lobes need them at the rim, where
+    /// its own ulp, so the nearer end's offset is refined by Newton's method on the
+    /// component's mass between that end and the sample (`v m` from `a`, `(1 − v) m` from
+    /// `b`), as for a narrow interval, where it may have lost digits ([`Lobe1::end_offset`]). The disk lobes need them at the rim, where
     /// `wi.z` is the square root of their product.
     pub fn sample_ends(&self, u: f32, a: f32, b: f32) -> Option<(f32, f32, f32)> {
         let (j, v) = self.pick(u, a, b)?;
@@ -305,20 +305,33 @@ impl Lobe1 {
         let d = (b - a) / s;
         let m = self.std_mass(za, zb, d);
         let far = math::abs(x - mu);
-        let from_a = self.end_offset(za, 1.0, x - a, far, s, v * m, d);
-        let from_b = self.end_offset(zb, -1.0, b - x, far, s, (1.0 - v) * m, d);
-        Some((x, from_a, from_b))
+        // Only the nearer end's distance can have lost digits: the other is at least half
+        // the interval.
+        let (off_a, off_b) = (x - a, b - x);
+        let near_a = off_a <= off_b;
+        let (z0, dir, off0, target) = if near_a {
+            (za, 1.0, off_a, v * m)
+        } else {
+            (zb, -1.0, off_b, (1.0 - v) * m)
+        };
+        let near = self.end_offset(z0, dir, off0, far, s, target, d);
+        Some(if near_a {
+            (x, near, off_b)
+        } else {
+            (x, off_a, near)
+        })
     }
 
     /// The offset from the standardised end `z0` inwards (`dir` +1 from the lower end, −1
     /// from the upper) holding the component mass `target`, from the plain offset `off0`
-    /// of a sample `far` from its component's centre: refined by three Newton steps on
-    /// `t = off/s` within a scale of the end (the density varies by less than a factor e
-    /// there for the logistic and the Cauchy, and the Gaussian's mass is the narrow
-    /// interval integral) and, for the logistic and the Cauchy, wherever the offset is
-    /// below a quarter of `far` (the sample `μ + s z` then carried the rounding of the
-    /// larger `s z` into the offset; their masses between the end and the sample keep
-    /// their digits at any width, [`Lobe1::std_mass`]); otherwise `off0`.
+    /// of a sample `far` (`|s z|`) from its component's centre: refined by three Newton
+    /// steps on `t = off/s` within a scale of the end (the density varies by less than a
+    /// factor e there for the logistic and the Cauchy, and the Gaussian's mass is the
+    /// narrow interval integral) and, for the logistic and the Cauchy, where the end is
+    /// nearer the sample than a quarter of `far` (the sample `μ + s z` then carried the
+    /// rounding of the larger `s z` into the offset, and the mass between end and sample
+    /// is a tail's, which their [`Lobe1::std_mass`] keeps to its digits at any width);
+    /// otherwise `off0`.
     #[inline]
     #[allow(clippy::too_many_arguments)]
     fn end_offset(
