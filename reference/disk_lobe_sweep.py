@@ -32,24 +32,17 @@ nothing there by design (docs/stability.md, Sampling lobes).
 Usage: python3 reference/disk_lobe_sweep.py [--count N] [--seed-offset K] [--out DIR]
 Writes DIR/disk_lobe.csv (default reference/golden/sweep/).
 """
-import argparse
 import math
-import sys
-from pathlib import Path
 
 import mpmath as mp
 import numpy as np
 
-from lobe1_sweep import KINDS, evaluate, f32, nudges
+from lobe1_sweep import KINDS, evaluate
+from sweep_io import angle, f32, nudges, parse_args, progress, unit, write_csv
 
 mp.mp.dps = 40
 MASS_FLOOR = mp.mpf("1e-30")
 
-
-def unit(v):
-    v = [mp.mpf(c) for c in v]
-    n = mp.sqrt(sum(c * c for c in v))
-    return [c / n for c in v]
 
 
 def frame(e1, wo):
@@ -94,9 +87,6 @@ def sample(e1, l1, l2, wo, u):
 def width(l1, l2):
     return min(1.0, min(s for (_, s, _) in l1[1]), min(s for (_, s, _) in l2[1]))
 
-
-def angle(p, q):
-    return 2 * mp.asin(min(mp.mpf(1), mp.sqrt(sum((x - y) ** 2 for x, y in zip(unit(p), unit(q)))) / 2))
 
 
 def lobe_text(lobe):
@@ -208,11 +198,7 @@ def conditioning(e1, l1, l2, wo, wi, u, p, d):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--count", type=int, default=1500)
-    ap.add_argument("--seed-offset", type=int, default=0)
-    ap.add_argument("--out", default=str(Path(__file__).resolve().parent / "golden" / "sweep"))
-    args = ap.parse_args()
+    args = parse_args(1500)
     rng = np.random.default_rng(22_000 + args.seed_offset)
     head = ["e1_x", "e1_y"]
     for name in ["l1", "l2"]:
@@ -221,9 +207,8 @@ def main():
             head += [f"{name}_mu{j}", f"{name}_s{j}", f"{name}_w{j}"]
     head += ["wo_x", "wo_y", "wo_z", "wi_x", "wi_y", "wi_z", "u_x", "u_y"]
     head += ["pdf_ref", "pdf_kappa", "sample_x", "sample_y", "sample_z", "sample_kappa"]
-    lines = [",".join(head)]
-    done = 0
-    while done < args.count:
+    rows = []
+    while len(rows) < args.count:
         e1, l1, l2, wo, wi, u = draw(rng)
         p, pm = pdf(e1, l1, l2, wo, wi)
         d, sm = sample(e1, l1, l2, wo, u)
@@ -235,14 +220,9 @@ def main():
         row += [mp.nstr(p, 17, min_fixed=1, max_fixed=0), "%.4g" % kp]
         row += [mp.nstr(c, 17, min_fixed=1, max_fixed=0) for c in unit(d)]
         row += ["%.4g" % ks]
-        lines.append(",".join(row))
-        done += 1
-        if done % 100 == 0:
-            print(f"{done}/{args.count}", file=sys.stderr)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "disk_lobe.csv").write_text("\n".join(lines) + "\n")
-    print(f"wrote {out / 'disk_lobe.csv'} ({args.count} queries)", file=sys.stderr)
+        rows.append(row)
+        progress(len(rows), args.count)
+    write_csv(args.out, "disk_lobe", head, rows)
 
 
 if __name__ == "__main__":

@@ -32,26 +32,18 @@ kernel's lobe has no representable mass, see docs/stability.md), 1e4 for the Cau
 Usage: python3 reference/lobe1_sweep.py [--count N] [--seed-offset K] [--out DIR]
 Writes DIR/lobe1.csv (default reference/golden/sweep/). ~1 min per 1 000 queries.
 """
-import argparse
 import math
-import sys
-from pathlib import Path
 
 import mpmath as mp
 import numpy as np
+
+from sweep_io import f32, nudges, parse_args, progress, write_csv
 
 mp.mp.dps = 40
 KINDS = ["logistic", "cauchy", "gaussian"]  # Lobe1Kind codes 0, 1, 2
 TAIL_LIMIT = {"logistic": 60.0, "cauchy": 1.0e4, "gaussian": 12.0}
 
 
-def f32(x):
-    return float(np.float32(x))
-
-
-def nudges(x):
-    x = np.float32(x)
-    return [float(np.nextafter(x, np.float32(np.inf))), float(np.nextafter(x, np.float32(-np.inf)))]
 
 
 def cdf(kind, z):
@@ -205,17 +197,13 @@ def kappa(kind, comps, a, b, x, u, exact):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--count", type=int, default=1500)
-    ap.add_argument("--seed-offset", type=int, default=0)
-    ap.add_argument("--out", default=str(Path(__file__).resolve().parent / "golden" / "sweep"))
-    args = ap.parse_args()
+    args = parse_args(1500)
     rng = np.random.default_rng(20_000 + args.seed_offset)
     head = ["kind", "count"]
     for j in range(3):
         head += [f"mu{j}", f"s{j}", f"w{j}"]
     head += ["a", "b", "x", "u", "mass_ref", "mass_kappa", "pdf_ref", "pdf_kappa", "sample_ref", "sample_kappa"]
-    lines = [",".join(head)]
+    rows = []
     for i in range(args.count):
         kind, comps, a, b, x, u = draw(rng, i, args.count)
         exact = evaluate(kind, comps, a, b, x, u)
@@ -227,13 +215,9 @@ def main():
         row += [repr(a), repr(b), repr(x), repr(u)]
         for k in range(3):
             row += [mp.nstr(exact[k], 17, min_fixed=1, max_fixed=0), "%.4g" % ks[k]]
-        lines.append(",".join(row))
-        if (i + 1) % 100 == 0:
-            print(f"{i + 1}/{args.count}", file=sys.stderr)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "lobe1.csv").write_text("\n".join(lines) + "\n")
-    print(f"wrote {out / 'lobe1.csv'} ({args.count} queries)", file=sys.stderr)
+        rows.append(row)
+        progress(i + 1, args.count)
+    write_csv(args.out, "lobe1", head, rows)
 
 
 if __name__ == "__main__":

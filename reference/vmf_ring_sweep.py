@@ -34,30 +34,17 @@ anywhere above the surface (50 %); u_ring, u_y uniform; u_x uniform (70 %) or wi
 Usage: python3 reference/vmf_ring_sweep.py [--count N] [--seed-offset K] [--out DIR]
 Writes DIR/vmf_ring.csv (default reference/golden/sweep/).
 """
-import argparse
 import math
-import sys
-from pathlib import Path
 
 import mpmath as mp
 import numpy as np
 
+from sweep_io import angle, f32, nudges, parse_args, progress, unit, write_csv
+
 mp.mp.dps = 40
 
 
-def f32(x):
-    return float(np.float32(x))
 
-
-def nudges(x):
-    x = np.float32(x)
-    return [float(np.nextafter(x, np.float32(np.inf))), float(np.nextafter(x, np.float32(-np.inf)))]
-
-
-def unit(v):
-    v = [mp.mpf(c) for c in v]
-    n = mp.sqrt(sum(c * c for c in v))
-    return [c / n for c in v]
 
 
 def dot(a, b):
@@ -121,10 +108,6 @@ def sample(t, kappa, wo, u_ring, ux, uy):
 def width(kappa):
     return min(1.0, 1.0 / math.sqrt(kappa))
 
-
-def angle(a, b):
-    """Angle between unit vectors, accurate when small: 2 asin(|a - b| / 2)."""
-    return 2 * mp.asin(mp.sqrt(sum((x - y) ** 2 for x, y in zip(a, b))) / 2)
 
 
 def rotate_off(v, delta, psi):
@@ -220,15 +203,11 @@ def conditioning(t, kappa, wo, wi, u_ring, ux, uy, p, d):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--count", type=int, default=2000)
-    ap.add_argument("--seed-offset", type=int, default=0)
-    ap.add_argument("--out", default=str(Path(__file__).resolve().parent / "golden" / "sweep"))
-    args = ap.parse_args()
+    args = parse_args(2000)
     rng = np.random.default_rng(21_000 + args.seed_offset)
     head = ["t_x", "t_y", "kappa", "wo_x", "wo_y", "wo_z", "wi_x", "wi_y", "wi_z", "u_ring", "u_x", "u_y"]
     head += ["pdf_ref", "pdf_kappa", "sample_x", "sample_y", "sample_z", "sample_kappa"]
-    lines = [",".join(head)]
+    rows = []
     for i in range(args.count):
         t, kappa, wo, wi, u_ring, ux, uy = draw(rng)
         p = pdf(t, kappa, wo, wi)
@@ -238,13 +217,9 @@ def main():
         row += [mp.nstr(p, 17, min_fixed=1, max_fixed=0), "%.4g" % kp]
         row += [mp.nstr(c, 17, min_fixed=1, max_fixed=0) for c in d]
         row += ["%.4g" % ks]
-        lines.append(",".join(row))
-        if (i + 1) % 200 == 0:
-            print(f"{i + 1}/{args.count}", file=sys.stderr)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "vmf_ring.csv").write_text("\n".join(lines) + "\n")
-    print(f"wrote {out / 'vmf_ring.csv'} ({args.count} queries)", file=sys.stderr)
+        rows.append(row)
+        progress(i + 1, args.count, 200)
+    write_csv(args.out, "vmf_ring", head, rows)
 
 
 if __name__ == "__main__":

@@ -18,9 +18,9 @@ use glam::{Vec2, Vec3};
 use scratchwave_kernel::bsdf::lobe1d::{Lobe1, Lobe1Kind};
 use scratchwave_kernel::bsdf::lobes::DiskLobe;
 use std::collections::BTreeMap;
-use sweep_common::{Row, Stat, Table, rel, report};
+use sweep_common::{Row, Stat, Table, angle, check_size, rel, report};
 
-/// The committed subset's size (the test refuses fewer, unless given another sample).
+/// The committed subset's size (the test refuses fewer).
 const MIN_QUERIES: usize = 1500;
 
 fn lobe(r: &Row, name: &str) -> Lobe1 {
@@ -44,27 +44,10 @@ fn width(l: &DiskLobe) -> f64 {
     min(&l.l1).min(min(&l.l2)).min(1.0)
 }
 
-/// Angle between two directions (f64, both normalised first), accurate when small.
-fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let unit = |v: [f64; 3]| {
-        let n = v.iter().map(|c| c * c).sum::<f64>().sqrt();
-        v.map(|c| c / n)
-    };
-    let (a, b) = (unit(a), unit(b));
-    let chord = (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
-    2.0 * (chord / 2.0).min(1.0).asin()
-}
-
 #[test]
 fn disk_lobe_pdf_and_sample_are_within_their_bound_over_the_domain() {
     let table = Table::load("DISK_LOBE_SWEEP_DIR", "reference/golden/sweep", "disk_lobe");
-    if std::env::var_os("DISK_LOBE_SWEEP_DIR").is_none() {
-        assert!(
-            table.rows.len() >= MIN_QUERIES,
-            "{} queries",
-            table.rows.len()
-        );
-    }
+    check_size("DISK_LOBE_SWEEP_DIR", &table, MIN_QUERIES);
     let names = [
         ["pdf, base (Gaussian²)", "sample, base (Gaussian²)"],
         [

@@ -17,7 +17,7 @@ mod sweep_common;
 
 use scratchwave_kernel::bsdf::lobe1d::{Lobe1, Lobe1Kind};
 use std::collections::BTreeMap;
-use sweep_common::{Row, Stat, Table, rel, report};
+use sweep_common::{Row, Stat, Table, check_size, rel, report};
 
 /// The committed subset's size (the test refuses fewer).
 const MIN_QUERIES: usize = 3000;
@@ -49,11 +49,7 @@ const FUNCS: [&str; 3] = ["mass", "pdf", "sample"];
 #[test]
 fn lobe1_functions_are_within_their_bound_over_the_domain() {
     let table = Table::load("LOBE1_SWEEP_DIR", "reference/golden/sweep", "lobe1");
-    assert!(
-        table.rows.len() >= MIN_QUERIES,
-        "{} queries",
-        table.rows.len()
-    );
+    check_size("LOBE1_SWEEP_DIR", &table, MIN_QUERIES);
     let mut stats: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
     let mut names = Vec::new();
     for k in KIND_NAMES {

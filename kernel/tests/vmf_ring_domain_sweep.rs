@@ -16,7 +16,7 @@ mod sweep_common;
 use glam::{Vec2, Vec3};
 use scratchwave_kernel::bsdf::lobes::{vmf_ring_pdf, vmf_ring_sample};
 use std::collections::BTreeMap;
-use sweep_common::{Row, Stat, Table, rel, report};
+use sweep_common::{Row, Stat, Table, angle, check_size, rel, report};
 
 /// The committed subset's size (the test refuses fewer).
 const MIN_QUERIES: usize = 2000;
@@ -33,25 +33,10 @@ fn v3(r: &Row, name: &str) -> Vec3 {
     Vec3::from(r.a3(name))
 }
 
-/// Angle between two directions (f64, both normalised first), accurate when small.
-fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let unit = |v: [f64; 3]| {
-        let n = v.iter().map(|c| c * c).sum::<f64>().sqrt();
-        v.map(|c| c / n)
-    };
-    let (a, b) = (unit(a), unit(b));
-    let chord = (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
-    2.0 * (chord / 2.0).min(1.0).asin()
-}
-
 #[test]
 fn vmf_ring_pdf_and_sample_are_within_their_bound_over_the_domain() {
     let table = Table::load("VMF_RING_SWEEP_DIR", "reference/golden/sweep", "vmf_ring");
-    assert!(
-        table.rows.len() >= MIN_QUERIES,
-        "{} queries",
-        table.rows.len()
-    );
+    check_size("VMF_RING_SWEEP_DIR", &table, MIN_QUERIES);
     let mut stats: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
     let mut names = Vec::new();
     for f in ["pdf", "sample"] {

@@ -91,6 +91,25 @@ impl Row<'_> {
     }
 }
 
+/// Refuses a committed subset of fewer than `min` queries; a sample given by the
+/// environment variable `env` may have any size.
+pub fn check_size(env: &str, table: &Table, min: usize) {
+    if std::env::var_os(env).is_none() {
+        assert!(table.rows.len() >= min, "{} queries", table.rows.len());
+    }
+}
+
+/// Angle between two directions (f64, both normalised first), accurate when small.
+pub fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let unit = |v: [f64; 3]| {
+        let n = v.iter().map(|c| c * c).sum::<f64>().sqrt();
+        v.map(|c| c / n)
+    };
+    let (a, b) = (unit(a), unit(b));
+    let chord = (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt();
+    2.0 * (chord / 2.0).min(1.0).asin()
+}
+
 /// Relative error of `got` against the exact `want`; below [`TINY`], 0 if `got` is as
 /// small, else infinite.
 pub fn rel(got: f32, want: f64) -> f64 {

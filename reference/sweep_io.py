@@ -1,0 +1,57 @@
+"""What the sampling sweeps (`lobe1_sweep.py`, `vmf_ring_sweep.py`, `disk_lobe_sweep.py`)
+share: their command line, the CSV they write, float32 rounding and neighbours, and
+direction helpers in mpmath."""
+import argparse
+import sys
+from pathlib import Path
+
+import mpmath as mp
+import numpy as np
+
+
+def f32(x):
+    """`x` rounded to float32 (as a Python float)."""
+    return float(np.float32(x))
+
+
+def nudges(x):
+    """The float32 neighbours of float32 `x`, above and below."""
+    x = np.float32(x)
+    return [float(np.nextafter(x, np.float32(np.inf))), float(np.nextafter(x, np.float32(-np.inf)))]
+
+
+def parse_args(default_count):
+    """`--count N --seed-offset K --out DIR` (DIR default `reference/golden/sweep/`)."""
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--count", type=int, default=default_count)
+    ap.add_argument("--seed-offset", type=int, default=0)
+    ap.add_argument("--out", default=str(Path(__file__).resolve().parent / "golden" / "sweep"))
+    return ap.parse_args()
+
+
+def progress(done, count, every=100):
+    if done % every == 0:
+        print(f"{done}/{count}", file=sys.stderr)
+
+
+def write_csv(out_dir, family, head, rows):
+    """`out_dir/family.csv`: the header and one line per row (lists of strings)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / f"{family}.csv"
+    path.write_text("\n".join([",".join(head)] + [",".join(r) for r in rows]) + "\n")
+    print(f"wrote {path} ({len(rows)} queries)", file=sys.stderr)
+
+
+def unit(v):
+    """`v` normalised exactly (mpmath)."""
+    v = [mp.mpf(c) for c in v]
+    n = mp.sqrt(sum(c * c for c in v))
+    return [c / n for c in v]
+
+
+def angle(p, q):
+    """Angle between two directions (normalised first), accurate when small:
+    2 asin(|p - q| / 2)."""
+    chord = mp.sqrt(sum((x - y) ** 2 for x, y in zip(unit(p), unit(q))))
+    return 2 * mp.asin(min(mp.mpf(1), chord / 2))
