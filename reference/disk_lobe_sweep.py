@@ -38,7 +38,7 @@ import mpmath as mp
 import numpy as np
 
 from lobe1_sweep import KINDS, evaluate
-from sweep_io import angle, f32, nudges, parse_args, progress, unit, write_csv
+from sweep_io import angle, draw_wo, f32, nudges, parse_args, progress, unit, write_csv
 
 mp.mp.dps = 40
 MASS_FLOOR = mp.mpf("1e-30")
@@ -113,12 +113,7 @@ def draw(rng):
             l2 = ("cauchy", [(0.0, sc, 0.5), (c, f32(2 * sc), 0.25), (-c, f32(2 * sc), 0.25)])
         else:
             l2 = ("cauchy", [(0.0, sc, 1.0)])
-    if rng.random() < 0.2:
-        ct = 1 - 10 ** rng.uniform(-9, -1)
-    else:
-        ct = 10 ** rng.uniform(math.log10(0.005), 0)
-    st, ph = math.sqrt(max(0.0, 1 - ct * ct)), rng.uniform(0, 2 * math.pi)
-    wo = [f32(st * math.cos(ph)), f32(st * math.sin(ph)), f32(ct)]
+    wo = draw_wo(rng)
     cls = rng.random()
     if cls < 0.4:
         scale = width(l1, l2)

@@ -2,6 +2,7 @@
 share: their command line, the CSV they write, float32 rounding and neighbours, and
 direction helpers in mpmath."""
 import argparse
+import math
 import sys
 from pathlib import Path
 
@@ -41,6 +42,17 @@ def write_csv(out_dir, family, head, rows):
     path = out / f"{family}.csv"
     path.write_text("\n".join([",".join(head)] + [",".join(r) for r in rows]) + "\n")
     print(f"wrote {path} ({len(rows)} queries)", file=sys.stderr)
+
+
+def draw_wo(rng):
+    """An outgoing direction (float32): cos(theta) 0.005 - 1 log-uniform (20 % with
+    1 - cos(theta) 1e-9 - 0.1), any azimuth."""
+    if rng.random() < 0.2:
+        ct = 1 - 10 ** rng.uniform(-9, -1)
+    else:
+        ct = 10 ** rng.uniform(math.log10(0.005), 0)
+    st, ph = math.sqrt(max(0.0, 1 - ct * ct)), rng.uniform(0, 2 * math.pi)
+    return [f32(st * math.cos(ph)), f32(st * math.sin(ph)), f32(ct)]
 
 
 def unit(v):

@@ -39,7 +39,7 @@ import math
 import mpmath as mp
 import numpy as np
 
-from sweep_io import angle, f32, nudges, parse_args, progress, unit, write_csv
+from sweep_io import angle, draw_wo, f32, nudges, parse_args, progress, unit, write_csv
 
 mp.mp.dps = 40
 
@@ -126,12 +126,7 @@ def draw(rng):
         phi_t = rng.uniform(0, 2 * math.pi)
     t = [f32(math.cos(phi_t)), f32(math.sin(phi_t))]
     kappa = f32(10 ** rng.uniform(-5, 7))
-    if rng.random() < 0.2:
-        ct = 1 - 10 ** rng.uniform(-9, -1)
-    else:
-        ct = 10 ** rng.uniform(math.log10(0.005), 0)
-    st, ph = math.sqrt(max(0.0, 1 - ct * ct)), rng.uniform(0, 2 * math.pi)
-    wo = [f32(st * math.cos(ph)), f32(st * math.sin(ph)), f32(ct)]
+    wo = draw_wo(rng)
     cls = rng.random()
     if cls < 0.5:  # on or near the ring
         ring = cone(t, wo, rng.random())
