@@ -294,8 +294,8 @@ impl Lobe1 {
     /// each keeping its digits where it is small: `x` itself resolves an offset only to
     /// its own ulp, so the nearer end's offset is refined by Newton's method on the
     /// component's mass between that end and the sample (`v m` from `a`, `(1 − v) m` from
-    /// `b`), as for a narrow interval, where it may have lost digits ([`Lobe1::end_offset`]). The disk lobes need them at the rim, where
-    /// `wi.z` is the square root of their product.
+    /// `b`), as for a narrow interval, where it may have lost digits (`end_offset`). The
+    /// disk lobes need them at the rim, where `wi.z` is the square root of their product.
     pub fn sample_ends(&self, u: f32, a: f32, b: f32) -> Option<(f32, f32, f32)> {
         let (j, v) = self.pick(u, a, b)?;
         let x = math::clamp(self.sample_one(j, v, a, b), a, b);
