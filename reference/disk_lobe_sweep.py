@@ -37,7 +37,7 @@ import math
 import mpmath as mp
 import numpy as np
 
-from lobe1_sweep import KINDS, evaluate
+from lobe1_sweep import KINDS, evaluate, nudged_components
 from sweep_io import angle, draw_wo, f32, nudges, parse_args, progress, unit, write_csv
 
 mp.mp.dps = 40
@@ -147,13 +147,8 @@ def draw(rng):
 
 def nudged_lobes(lobe):
     kind, comps = lobe
-    for j in range(len(comps)):
-        for slot in range(3):
-            for y in nudges(comps[j][slot]):
-                c2 = [list(c) for c in comps]
-                c2[j][slot] = y
-                if c2[j][1] > 0 and c2[j][2] > 0:
-                    yield (kind, [tuple(c) for c in c2])
+    for c2 in nudged_components(comps):
+        yield (kind, c2)
 
 
 def vary(vec):

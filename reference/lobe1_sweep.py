@@ -166,6 +166,18 @@ def draw(rng, i, n):
     return kind, comps, a, b, x, u
 
 
+def nudged_components(comps):
+    """Each mixture with one centre, scale or weight moved to a neighbouring float32
+    (scales and weights kept positive)."""
+    for j in range(len(comps)):
+        for slot in range(3):
+            for y in nudges(comps[j][slot]):
+                c2 = [list(c) for c in comps]
+                c2[j][slot] = y
+                if c2[j][1] > 0 and c2[j][2] > 0:
+                    yield [tuple(c) for c in c2]
+
+
 def kappa(kind, comps, a, b, x, u, exact):
     worst = [0.0, 0.0, 0.0]
 
@@ -174,13 +186,8 @@ def kappa(kind, comps, a, b, x, u, exact):
             if exact[k] != 0:
                 worst[k] = max(worst[k], float(abs(vals[k] / exact[k] - 1)))
 
-    for j in range(len(comps)):
-        for slot in range(3):
-            for y in nudges(comps[j][slot]):
-                c2 = [list(c) for c in comps]
-                c2[j][slot] = y
-                if c2[j][1] > 0 and c2[j][2] > 0:
-                    upd(evaluate(kind, [tuple(c) for c in c2], a, b, x, u))
+    for c2 in nudged_components(comps):
+        upd(evaluate(kind, c2, a, b, x, u))
     for y in nudges(a):
         if y < b:
             upd(evaluate(kind, comps, y, b, min(max(x, y), b), u))
