@@ -248,23 +248,31 @@ impl Lobe1 {
         l
     }
 
-    /// The component drawn by `u` on `[a, b]` (probability `w_j m_j / Σ w m`) and `u`
-    /// rescaled within it; `None` when the interval carries no mass.
+    /// The component drawn by `u` on `[a, b]` (probability `w_j m_j / Σ w m`), `u`
+    /// rescaled within it, and its unweighted mass `m_j`; `None` when the interval carries
+    /// no mass. Each component's mass is formed once.
     #[inline]
-    fn pick(&self, u: f32, a: f32, b: f32) -> Option<(usize, f32)> {
-        let total = self.mass(a, b);
+    fn pick(&self, u: f32, a: f32, b: f32) -> Option<(usize, f32, f32)> {
+        let n = self.n();
+        let mut m = [0.0; LOBE1_MAX];
+        let mut total = 0.0;
+        let mut j = 0;
+        while j < LOBE1_MAX && j < n {
+            m[j] = self.mass_one(j, a, b);
+            total += self.weight[j] * m[j];
+            j += 1;
+        }
         if !(total > 0.0) || !total.is_finite() {
             return None;
         }
-        let n = self.n();
         let target = u * total;
         let mut acc = 0.0;
-        let mut j = 0;
         let mut pick = 0;
         let mut pick_mass = 0.0;
         let mut below = 0.0;
+        j = 0;
         while j < LOBE1_MAX && j < n {
-            let wm = self.weight[j] * self.mass_one(j, a, b);
+            let wm = self.weight[j] * m[j];
             if wm > 0.0 {
                 pick = j;
                 pick_mass = wm;
@@ -279,15 +287,16 @@ impl Lobe1 {
         if !(pick_mass > 0.0) || pick >= LOBE1_MAX {
             return None;
         }
-        Some((pick, math::clamp((target - below) / pick_mass, 0.0, 1.0)))
+        let v = math::clamp((target - below) / pick_mass, 0.0, 1.0);
+        Some((pick, v, m[pick]))
     }
 
     /// Draws `x` from the mixture truncated to `[a, b]`: the component `j` with probability
     /// `w_j m_j / Σ w m` (from `u`, rescaled), then its truncated inverse CDF. `None` when
     /// the interval carries no mass.
     pub fn sample(&self, u: f32, a: f32, b: f32) -> Option<f32> {
-        let (j, v) = self.pick(u, a, b)?;
-        Some(math::clamp(self.sample_one(j, v, a, b), a, b))
+        let (j, v, m) = self.pick(u, a, b)?;
+        Some(math::clamp(self.sample_one(j, v, m, a, b), a, b))
     }
 
     /// [`Lobe1::sample`] with the sample's distances from both ends, `(x, x − a, b − x)`,
@@ -297,13 +306,12 @@ impl Lobe1 {
     /// `b`), as for a narrow interval, where it may have lost digits (`end_offset`). The
     /// disk lobes need them at the rim, where `wi.z` is the square root of their product.
     pub fn sample_ends(&self, u: f32, a: f32, b: f32) -> Option<(f32, f32, f32)> {
-        let (j, v) = self.pick(u, a, b)?;
-        let x = math::clamp(self.sample_one(j, v, a, b), a, b);
+        let (j, v, m) = self.pick(u, a, b)?;
+        let x = math::clamp(self.sample_one(j, v, m, a, b), a, b);
         let (mu, s) = (self.mu[j], self.scale[j]);
         let za = (a - mu) / s;
         let zb = (b - mu) / s;
         let d = (b - a) / s;
-        let m = self.std_mass(za, zb, d);
         let far = math::abs(x - mu);
         // Only the nearer end's distance can have lost digits: the other is at least half
         // the interval.
@@ -349,7 +357,17 @@ impl Lobe1 {
         if !(refine || UNIFORM_CONTROL) {
             return off0;
         }
-        let mut t = math::clamp(t0, 0.0, d);
+        let t = self.newton_offset(z0, dir, math::clamp(t0, 0.0, d), target, d);
+        if refine { s * t } else { off0 }
+    }
+
+    /// Three Newton steps from `t` on the standardised offset `t ∈ [0, d]` from the end
+    /// `z0` inwards (`dir` +1 from the lower end, −1 from the upper) at which the
+    /// component's mass between the end and `z0 + dir t` is `target`; a non-finite step
+    /// leaves `t` as it is.
+    #[inline]
+    fn newton_offset(&self, z0: f32, dir: f32, t: f32, target: f32, d: f32) -> f32 {
+        let mut t = t;
         let mut k = 0;
         while k < 3 {
             let z1 = z0 + dir * t;
@@ -360,12 +378,13 @@ impl Lobe1 {
             }
             k += 1;
         }
-        if refine { s * t } else { off0 }
+        t
     }
 
-    /// Truncated inverse CDF of component `j` at `v ∈ [0, 1]`.
+    /// Truncated inverse CDF of component `j` at `v ∈ [0, 1]`; `m` is the component's
+    /// unweighted mass on `[a, b]`.
     #[inline]
-    fn sample_one(&self, j: usize, v: f32, a: f32, b: f32) -> f32 {
+    fn sample_one(&self, j: usize, v: f32, m: f32, a: f32, b: f32) -> f32 {
         if j >= LOBE1_MAX {
             return a;
         }
@@ -381,15 +400,7 @@ impl Lobe1 {
         // and the result is selected at the end ([`UNIFORM_CONTROL`]).
         let is_narrow = narrow(self.kind, za, zb, d);
         let x_narrow = if is_narrow || UNIFORM_CONTROL {
-            let target = v * self.std_mass(za, zb, d);
-            let mut t = v * d;
-            let mut k = 0;
-            while k < 3 {
-                let step = (self.std_mass(za, za + t, t) - target) / self.density_std(za + t);
-                t = math::clamp(t - step, 0.0, d);
-                k += 1;
-            }
-            a + s * t
+            a + s * self.newton_offset(za, 1.0, v * d, v * m, d)
         } else {
             a
         };
