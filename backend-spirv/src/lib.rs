@@ -15,7 +15,8 @@
 //!   dispatch and readback.
 //! - Typed entry points on top of it, each with the CPU function it must agree with:
 //!   [`Gpu::evaluate_table`] and [`Gpu::footprint_table`] (the CPU backend's
-//!   `evaluate_table` / `footprint_table`), [`Gpu::math_probe`] / [`math_probe_cpu`];
+//!   `evaluate_table` / `footprint_table`), [`Gpu::math_probe`] / [`math_probe_cpu`],
+//!   [`Gpu::lobe_probe`] (the shader crate's `lobe_probe::evaluate` on the CPU);
 //!   [`Gpu`] implements `scratchwave_host::TableBackend` for the conformance run.
 //! - [`Gpu::render_scene`]: a whole frame, the kernel's per-pixel light loop
 //!   (`kernel::render::radiance::pixel_radiance`) over a [`SceneInput`], dispatched in

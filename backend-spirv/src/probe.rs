@@ -1,8 +1,9 @@
-//! The math probe: one kernel `math` function evaluated element-wise.
+//! The probes: one kernel `math` function evaluated element-wise, and the sampling lobes.
 
 use crate::dispatch::{Dispatched, Input};
 use crate::error::Result;
 use crate::gpu::Gpu;
+use scratchwave_spirv_shader::lobe_probe::LobeQuery;
 use scratchwave_spirv_shader::probe::{MathFunction, ProbeParams};
 
 impl Gpu {
@@ -18,6 +19,12 @@ impl Gpu {
             &[Input::whole(&params), Input::per_item(args)],
             args.len(),
         )
+    }
+
+    /// Evaluates each of `queries` in the `lobe_probe` entry point
+    /// (`scratchwave_spirv_shader::lobe_probe::evaluate`).
+    pub fn lobe_probe(&self, queries: &[LobeQuery]) -> Result<Dispatched<[f32; 4]>> {
+        self.dispatch("lobe_probe", &[Input::per_item(queries)], queries.len())
     }
 }
 

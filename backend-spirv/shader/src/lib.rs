@@ -16,6 +16,7 @@
 #![no_std]
 
 pub mod bsdf_probe;
+pub mod lobe_probe;
 pub mod probe;
 
 use bytemuck::{Pod, Zeroable};
@@ -270,6 +271,20 @@ pub fn bsdf(
         let set = ScratchBvh::new(nodes, scratches);
         let lk = Lookup::with_g1_table(set, G1Table::from_flat(g1));
         out[i] = bsdf_probe::evaluate(&material[0], &lk, &queries[i]);
+    }
+}
+
+/// The scratch models' sampling lobes ([`lobe_probe::evaluate`]): one `Lobe1`, disk-lobe or
+/// vMF-ring density, mass or sample per query.
+#[spirv(compute(threads(64)))]
+pub fn lobe_probe(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 0)] queries: &[lobe_probe::LobeQuery],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 1)] out: &mut [[f32; 4]],
+) {
+    let i = id.x as usize;
+    if i < out.len() {
+        out[i] = lobe_probe::evaluate(&queries[i]);
     }
 }
 

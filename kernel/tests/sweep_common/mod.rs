@@ -4,6 +4,8 @@
 //! through `#[path]`, by the conformance crate's cross-backend sweep.
 #![allow(dead_code)]
 
+pub mod sampling;
+
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::ghs::GhsParams;
 use scratchwave_kernel::material::Material;
