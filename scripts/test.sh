@@ -16,6 +16,8 @@ cargo fmt --manifest-path fuzz/Cargo.toml -- --check
 cargo fmt --manifest-path python/Cargo.toml -- --check
 step "cargo clippy -D warnings"
 cargo clippy --workspace --all-targets -- -D warnings
+# The benches' SPIR-V example sits behind their `spirv` feature.
+cargo clippy -p scratchwave-benches --all-targets --features spirv -- -D warnings
 # The fuzz crate with the same stable clippy (no sanitizer flags: lints only), in the fuzz
 # build directory so its dependencies are checked once per cache.
 CARGO_TARGET_DIR=${FUZZ_TARGET_DIR:-$PWD/fuzz/target} \

@@ -3,7 +3,7 @@
 //! N of the GHS model, and N/10 area-light queries (the light sweep's configurations laid
 //! out by `light_configs::grid_batch`) with Eq. 27 and with the extent rule.
 //!
-//! `cargo run --release -p scratchwave-benches --example throughput [-- N SCRATCHES]`
+//! `cargo run --release -p scratchwave-benches --features spirv --example throughput [-- N SCRATCHES]`
 //!
 //! "scan" (tables only) is the CPU visiting the scratches in slot order instead of
 //! traversing the BVH, to separate the lookup from the device. GPU times are split as the
