@@ -91,8 +91,8 @@ pub fn band_integral(width: f32, q0: f32, q1: f32, si: SiMode) -> f32 {
 /// exactly and only the tails are subtracted (relative error `~ε` instead of `~ε·πW|q|`).
 /// An interval shorter than [`DIRECT_SPAN`] (a band that crosses a small light, or only
 /// clips a corner of a large one) is integrated directly: the difference of two
-/// antiderivatives of size `~W/2` would keep only `ε W/2` of absolute accuracy, 4–11 % of
-/// the 1e-4-rad chords of the light sweep (`reference/light_sweep.py`).
+/// antiderivatives of size `~W/2` would keep only `ε W/2` of absolute accuracy, 4–11 % off
+/// on chords of 5e-5 – 3e-4 rad in the light sweep (`reference/light_sweep.py`).
 /// [`SiMode::Velinov`] keeps Eq. 29 as printed.
 #[inline]
 pub fn band_integral_len(width: f32, q0: f32, len: f32, si: SiMode) -> f32 {
