@@ -32,7 +32,14 @@ normalised exactly; the tangents are unit to ~1e-9, as in `scratch_sweep.py`).
 Each query also carries its conditioning kappa: the largest relative change of the exact
 value when one float32 input (wo, lambda, x, sigma, every light coordinate, every scratch
 field) moves to a neighbouring float32. A query whose exact value is 0 while a neighbour's
-is not (a band exactly grazing a light) is redrawn.
+is not (a band exactly grazing a light) is redrawn. Beside it, kappa_s: the largest
+relative change when one end of a lit arc moves by one float32 ulp of s = sin(phi), the
+parameter the kernel keeps for it (`kernel/src/lights/band_circle.rs`): not an input's
+conditioning but the resolution of that representation, which near the horizon
+(|s| -> 1) and for chords much shorter than |s| is far coarser than the inputs. The
+kernel test accepts err <= max(1e-4, 16 max(kappa, kappa_s)) and reports the inputs' rule
+max(1e-4, 8 kappa) (`kernel/tests/light_domain_sweep.rs`, `docs/stability.md`
+*Area lights*). The extent rule (bands = 20) is not swept.
 
 Domain: sphere lights with the asin cone (35 %, 3 % of them around the shading point) and
 the atan cone (15 %), convex polygons of 3-8 vertices (50 %, a circle or ellipse of
