@@ -16,6 +16,7 @@
 //!   infinite scratch is Eq. 27's `√π/(σk)` factor (times `2πσ² e^{−s_b²/σ²}`, in 1/µm).
 
 use crate::math;
+use crate::math::quadrature::{GL8_W, GL8_X};
 
 use super::si_fast::si_fast_split;
 
@@ -71,12 +72,47 @@ pub fn band_antiderivative(width: f32, q: f32, si: SiMode) -> f32 {
     width * (asymptote - rest) / math::PI
 }
 
+/// Widest interval, in radians of the sinc's argument (`πW|q1 − q0|`), that
+/// [`band_integral_len`] sums by Gauss–Legendre instead of differencing `A`: there the 8-point
+/// rule is exact to ~1e-13 of `sinc²`'s scale, while `A(q1) − A(q0)` loses the digits the
+/// two values share.
+const DIRECT_SPAN: f32 = 2.0;
+
 /// `W² ∫_{q0}^{q1} sinc²(πWξ₂) dξ₂` (Velinov Eq. 27's `N(ξ, q1) − N(ξ, q0)` across the
-/// scratch); negative when `q1 < q0`. Far out on one side the asymptotes cancel exactly and
-/// only the tails are subtracted (relative error `~ε` instead of `~ε·πW|q|`).
+/// scratch); negative when `q1 < q0`: [`band_integral_len`] with `len = q1 − q0`.
 #[inline]
 pub fn band_integral(width: f32, q0: f32, q1: f32, si: SiMode) -> f32 {
+    band_integral_len(width, q0, q1 - q0, si)
+}
+
+/// `W² ∫_{q0}^{q0 + len} sinc²(πWξ₂) dξ₂`, the length passed apart from the start so that a
+/// short interval far from ξ₂ = 0 keeps the digits its ends share (the caller forms `len`
+/// from its own, better-conditioned parameters). Far out on one side the asymptotes cancel
+/// exactly and only the tails are subtracted (relative error `~ε` instead of `~ε·πW|q|`).
+/// An interval shorter than [`DIRECT_SPAN`] (a band that crosses a small light, or only
+/// clips a corner of a large one) is integrated directly: the difference of two
+/// antiderivatives of size `~W/2` would keep only `ε W/2` of absolute accuracy, 4–11 % off
+/// on chords of 5e-5 – 3e-4 rad in the light sweep (`reference/light_sweep.py`).
+/// [`SiMode::Velinov`] keeps Eq. 29 as printed.
+#[inline]
+pub fn band_integral_len(width: f32, q0: f32, len: f32, si: SiMode) -> f32 {
+    let half = 0.5 * math::PI * width * len;
+    if si != SiMode::Velinov && math::abs(half) <= 0.5 * DIRECT_SPAN {
+        // W² ∫ sinc²(πWq) dq = (W/π) ∫ sinc²(x) dx, x = πWq, by 8-point Gauss–Legendre.
+        let mid = math::PI * width * (q0 + 0.5 * len);
+        let mut acc = 0.0;
+        let mut k = 0;
+        while k < 4 {
+            let (a, b) = (
+                math::sinc(mid - half * GL8_X[k]),
+                math::sinc(mid + half * GL8_X[k]),
+            );
+            acc += GL8_W[k] * (a * a + b * b);
+            k += 1;
+        }
+        return width * half * acc / math::PI;
+    }
     let (a0, r0) = band_antiderivative_split(width, q0, si);
-    let (a1, r1) = band_antiderivative_split(width, q1, si);
+    let (a1, r1) = band_antiderivative_split(width, q0 + len, si);
     width * ((a1 - a0) + (r0 - r1)) / math::PI
 }

@@ -50,11 +50,16 @@ impl BandCircle {
     #[inline]
     pub fn new_offset(tangent: Vec2, bitangent: Vec2, wo: Vec3, offset: f32) -> Option<BandCircle> {
         let wo_xy = Vec2::new(wo.x, wo.y);
-        let c = offset - wo_xy.dot(tangent);
+        let (wo_t, wo_b) = (wo_xy.dot(tangent), wo_xy.dot(bitangent));
+        let c = offset - wo_t;
         if !(c > -1.0 && c < 1.0) {
             return None;
         }
-        let rho = math::sqrt0(1.0 - c * c);
+        // `1 − c²` as `wo_b² + wo_z² + offset (2 wo_t − offset)` (|wo| = 1, t ⟂ b): for a
+        // view along the scratch (c → ±1) the plain `1 − c²` keeps only the absolute
+        // accuracy ~ε of c², which put 1e-5 rad into the crossings of a band circle of
+        // radius 0.018 (`reference/light_sweep.py`).
+        let rho = math::sqrt0(wo_b * wo_b + wo.z * wo.z + offset * (2.0 * wo_t - offset));
         if !(rho > 0.0) {
             return None;
         }
@@ -63,7 +68,7 @@ impl BandCircle {
             b3: Vec3::new(bitangent.x, bitangent.y, 0.0),
             c,
             rho,
-            wo_b: wo_xy.dot(bitangent),
+            wo_b,
         })
     }
 
@@ -78,6 +83,13 @@ impl BandCircle {
     #[inline]
     pub fn xi2(&self, s: f32, lambda: f32) -> f32 {
         (self.rho * s + self.wo_b) / lambda
+    }
+
+    /// `ξ₂(s1) − ξ₂(s0)` (1/µm), formed from `s1 − s0`: the two `ξ₂` share the offset
+    /// `wo_xy · b`, which can be far larger than the chord between them.
+    #[inline]
+    pub fn xi2_len(&self, s0: f32, s1: f32, lambda: f32) -> f32 {
+        self.rho * (s1 - s0) / lambda
     }
 
     /// Components `(m_t, m_b, m_z)` of a plane normal in the circle's frame.

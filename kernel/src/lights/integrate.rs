@@ -19,7 +19,7 @@
 //! against `λ/(2πσ)`; lights that only graze the band or are narrower than it are
 //! over- or under-estimated (measured in `testkit/tests/light_reference.rs`).
 
-use super::band::{SiMode, band_integral};
+use super::band::{SiMode, band_integral_len};
 use super::band_circle::{BandCircle, Breakpoints};
 use super::limits::MAX_BREAKPOINTS;
 use super::limits::MAX_VERTICES;
@@ -360,18 +360,18 @@ const FRAC_1_SQRT_TAU: f32 = 0.398_942_28;
 /// Most panels the V-groove quadrature uses per interval.
 const MAX_PANELS: u32 = 64;
 
-/// `∫_{q0}^{q1} |M − P|²(ξ₂) dξ₂` (µm² · 1/µm).
-pub fn across_integral(a: &Across, q0: f32, q1: f32) -> f32 {
+/// `∫_{q0}^{q0 + len} |M − P|²(ξ₂) dξ₂` (µm² · 1/µm), the length passed apart from the start
+/// (see [`band_integral_len`]).
+pub fn across_integral(a: &Across, q0: f32, len: f32) -> f32 {
     match a.profile {
         Profile::Rect => {
             let depth2 =
                 mask_minus_profile(Profile::Rect, 1.0, a.depth, a.depth_half_turns_per_um, 0.0)
                     .norm_sqr();
-            depth2 * band_integral(a.width, q0, q1, a.si)
+            depth2 * band_integral_len(a.width, q0, len, a.si)
         }
         Profile::Triangle => {
             // Panels no wider than a quarter of the sinc lobe spacing 1/W.
-            let len = q1 - q0;
             let want = math::abs(len) * a.width * 4.0 + 1.0;
             let panels = if want < MAX_PANELS as f32 {
                 want as u32
@@ -420,7 +420,7 @@ fn chord_power(
     if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, offset) {
         let lambda = across.lambda;
         lit_intervals(region, &band, |s0, s1| {
-            part += across_integral(across, band.xi2(s0, lambda), band.xi2(s1, lambda));
+            part += across_integral(across, band.xi2(s0, lambda), band.xi2_len(s0, s1, lambda));
         });
     }
     part

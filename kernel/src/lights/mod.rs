@@ -23,7 +23,7 @@ pub mod polygon;
 pub mod si_fast;
 pub mod sphere;
 
-pub use band::{SiMode, band_antiderivative, band_integral};
+pub use band::{SiMode, band_antiderivative, band_integral, band_integral_len};
 pub use integrate::{
     BandRule, Light, LightKind, LightParams, LightQuery, LightRegion, MAX_LAMBDAS, light_integral,
     light_integral_footprint, light_integrals, light_integrals_in,

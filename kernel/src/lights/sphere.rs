@@ -118,9 +118,14 @@ impl SphereCap {
         }
         let (mt, mb, mz) = band.components(self.axis);
         let r = math::sqrt(mb * mb + mz * mz);
-        let theta_d = math::atan2(r, mt);
-        let theta_c = math::atan2(band.rho, band.c);
-        let beta = math::abs(theta_d - theta_c);
+        // β = |θ_d − θ_c|, θ_d = atan2(r, m_t) the axis's angle from t₃ and θ_c = atan2(ρ, c)
+        // the band's, as one atan2 of the difference's sine and cosine: the difference of
+        // the two angles (each up to π) kept only their absolute accuracy ~1e-7 rad, which a
+        // band crossing near the cone's edge magnifies (`reference/light_sweep.py`).
+        let beta = math::abs(math::atan2(
+            r * band.c - mt * band.rho,
+            mt * band.c + r * band.rho,
+        ));
         let slack =
             2.0 * math::sin(0.5 * (self.alpha + beta)) * math::sin(0.5 * (self.alpha - beta))
                 / band.rho;
