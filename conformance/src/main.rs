@@ -12,9 +12,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 const USAGE: &str = "usage:
-  scratchwave run [--cases DIR] [--scenes DIR] [--out DIR] [--spirv-scenes yes]
+  scratchwave run [--cases DIR] [--scenes DIR] [--out DIR] [--spirv-scenes yes|no]
                                                   conformance run over the committed cases
-                                                  and scenes (embree renders vs cpu; spirv too with --spirv-scenes yes)
+                                                  and scenes (embree and spirv renders vs cpu; --spirv-scenes no skips spirv)
   scratchwave table SPEC.json [--backend cpu|simd|spirv|all]
   scratchwave footprint SPEC.json [--backend cpu|simd|spirv]
   scratchwave light SPEC.json [--backend cpu|simd|spirv]
@@ -299,8 +299,8 @@ fn dispatch(args: &[String]) -> Result<ExitCode, Failure> {
                 .map(PathBuf::from)
                 .unwrap_or_else(|| root.join("target/conformance"));
             let spirv_scenes = match flag(&flags, "spirv-scenes") {
-                None | Some("no") => false,
-                Some("yes") => true,
+                None | Some("yes") => true,
+                Some("no") => false,
                 Some(other) => {
                     return Err(Failure::Usage(format!(
                         "--spirv-scenes takes yes or no, got {other:?}"
