@@ -32,9 +32,9 @@ mod sweep_common;
 
 use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, light_integral};
 use scratchwave_kernel::material::Material;
-use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
+use scratchwave_kernel::scratch::ScratchSlice;
 use std::collections::BTreeMap;
-use sweep_common::{K, Row, Stat, Table, check_size, rel, report};
+use sweep_common::{K, Row, Stat, Table, check_size, rel, report, scratches_of};
 
 /// The multiple of `max(κ, κs)` a result may be off by. Where a band crosses a light near
 /// its edge, the chord hinges on the angle `β` between the light's centre and the band
@@ -73,19 +73,6 @@ fn light(r: &Row) -> Light {
     }
 }
 
-fn scratches(r: &Row) -> Vec<Scratch> {
-    (0..r.u("n"))
-        .map(|i| Scratch {
-            center: [r.f(&format!("s{i}_cx")), r.f(&format!("s{i}_cy"))],
-            tangent: [r.f(&format!("s{i}_tx")), r.f(&format!("s{i}_ty"))],
-            half_len: r.f(&format!("s{i}_h")),
-            width: r.f(&format!("s{i}_w")),
-            depth: r.f(&format!("s{i}_d")),
-            profile: r.u(&format!("s{i}_profile")),
-        })
-        .collect()
-}
-
 /// The kernel's value of one row.
 fn kernel_value(r: &Row) -> f32 {
     let params = LightParams {
@@ -104,7 +91,7 @@ fn kernel_value(r: &Row) -> f32 {
         light: light(r),
         ..Default::default()
     };
-    let s = scratches(r);
+    let s = scratches_of(r);
     light_integral(&params, &q, &ScratchSlice { scratches: &s })
 }
 

@@ -205,10 +205,10 @@ pub struct ScratchQuery {
 /// The families of `reference/golden/sweep/` (scratch models).
 pub const SCRATCH_FAMILIES: [&str; 4] = ["velinov", "werner_rect", "werner_tri", "werner_blended"];
 
-/// Decodes one scratch-sweep row of `family`.
-pub fn scratch_query(family: &str, r: &Row) -> ScratchQuery {
-    let n = r.u("n") as usize;
-    let scratches: Vec<Scratch> = (0..n)
+/// The row's `n` scratches, columns `s{i}_cx`, `_cy`, `_tx`, `_ty`, `_h`, `_w`, `_d`,
+/// `_profile` (the scratch and light sweeps).
+pub fn scratches_of(r: &Row) -> Vec<Scratch> {
+    (0..r.u("n"))
         .map(|i| Scratch {
             center: [r.f(&format!("s{i}_cx")), r.f(&format!("s{i}_cy"))],
             tangent: [r.f(&format!("s{i}_tx")), r.f(&format!("s{i}_ty"))],
@@ -217,7 +217,12 @@ pub fn scratch_query(family: &str, r: &Row) -> ScratchQuery {
             depth: r.f(&format!("s{i}_d")),
             profile: r.u(&format!("s{i}_profile")),
         })
-        .collect();
+        .collect()
+}
+
+/// Decodes one scratch-sweep row of `family`.
+pub fn scratch_query(family: &str, r: &Row) -> ScratchQuery {
+    let scratches = scratches_of(r);
     let velinov = family == "velinov";
     let blended = family == "werner_blended";
     let params = TableParams {
