@@ -17,20 +17,24 @@
 //!   sweep's constants (`K = 8` for the closed forms, 16 for the accurate average;
 //!   `kernel/tests/footprint_domain_sweep.rs`).
 //!
+//! * Area lights (`reference/golden/sweep/light.csv`): Velinov Eq. 27's single band through
+//!   a light batch (one query per batch), held to the light sweep's bound
+//!   `max(1e-4, 16·max(κ, κs))` (`kernel/tests/light_domain_sweep.rs`).
+//!
 //! Run with `--nocapture` for the per-backend tables.
 
 #[path = "../../kernel/tests/sweep_common/mod.rs"]
 mod sweep_common;
 
 use scratchwave_conformance::backends::available;
-use scratchwave_host::{FootprintBatch, TableBatch};
+use scratchwave_host::{FootprintBatch, LightBatch, TableBatch};
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::table::{TableParams, TableQuery};
 use scratchwave_kernel::units::{UNIT_TOLERANCE, um_from_nm};
 use std::collections::BTreeMap;
 use sweep_common::{
-    FLOOR, K, SCRATCH_FAMILIES, Stat, Table, footprint_inputs, ghs_params, rel, report,
-    scratch_query,
+    FLOOR, K, K_LIGHT, SCRATCH_FAMILIES, Stat, Table, footprint_inputs, ghs_params, light_query,
+    rel, report, scratch_query,
 };
 
 /// One sweep query as a batch, with its exact value, κ and report group.
@@ -153,6 +157,33 @@ fn footprint_cases() -> Vec<FootprintCase> {
         .collect()
 }
 
+/// One light-sweep query as a batch, with its exact value and `max(κ, κs)`.
+struct LightCase {
+    batch: LightBatch,
+    exact: f64,
+    kappa: f64,
+    row: String,
+}
+
+fn light_cases() -> Vec<LightCase> {
+    let t = Table::load("LIGHT_SWEEP_DIR", "reference/golden/sweep", "light");
+    t.rows()
+        .map(|r| {
+            let (params, query, scratches) = light_query(&r);
+            LightCase {
+                batch: LightBatch {
+                    params,
+                    scratches,
+                    queries: vec![query],
+                },
+                exact: r.d("ref"),
+                kappa: r.d("kappa").max(r.d("kappa_s")),
+                row: format!("light: {}", r.text()),
+            }
+        })
+        .collect()
+}
+
 #[test]
 fn every_backend_within_the_conditioning_bound() {
     let mut cases = scratch_cases();
@@ -173,6 +204,9 @@ fn every_backend_within_the_conditioning_bound() {
         footprints.len()
     );
     println!("{} footprint queries", footprints.len());
+    let lights = light_cases();
+    assert!(lights.len() >= 1_500, "only {} lights", lights.len());
+    println!("{} light queries", lights.len());
     let (backends, notes) = available();
     for n in notes {
         println!("{n}");
@@ -206,6 +240,17 @@ fn every_backend_within_the_conditioning_bound() {
                     || format!("{} ({} {:e})", c.row, b.name(), values[i]),
                 );
             }
+        }
+        for c in &lights {
+            let got = b
+                .evaluate_light(&c.batch)
+                .unwrap_or_else(|e| panic!("{}: {e}", c.row))[0];
+            stats
+                .entry((3, "area light, Eq. 27"))
+                .or_default()
+                .add_with(K_LIGHT, rel(got, c.exact), c.kappa, || {
+                    format!("{} ({} {got:e})", c.row, b.name())
+                });
         }
         println!(
             "\n{} ({:.1} s, one batch per query):",

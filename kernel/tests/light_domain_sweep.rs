@@ -17,7 +17,7 @@
 //!
 //! Printed, not asserted: every query against `max(1e-4, 8κ)` (the inputs alone; the
 //! kernel is not there yet, see `docs/stability.md` *Area lights*). Asserted:
-//! `err ≤ max(1e-4, K_LIGHT·max(κ, κs))` ([`K_LIGHT`]). Exact values below 1e-30 (lights
+//! `err ≤ max(1e-4, K_LIGHT·max(κ, κs))` (`sweep_common::K_LIGHT`). Exact values below 1e-30 (lights
 //! the band misses) must come out as small.
 //!
 //! Groups: the light's kind (sphere with the `asin` or `atan` cone, convex polygon) and its
@@ -30,20 +30,10 @@
 
 mod sweep_common;
 
-use scratchwave_kernel::lights::{Cone, Light, LightParams, LightQuery, light_integral};
-use scratchwave_kernel::material::Material;
+use scratchwave_kernel::lights::light_integral;
 use scratchwave_kernel::scratch::ScratchSlice;
 use std::collections::BTreeMap;
-use sweep_common::{K, Row, Stat, Table, check_size, rel, report, scratches_of};
-
-/// The multiple of `max(κ, κs)` a result may be off by. Where a band crosses a light near
-/// its edge, the chord hinges on the angle `β` between the light's centre and the band
-/// circle, which the kernel forms from the normalised centre, three dot products, the
-/// band's `c` and `ρ` and one `atan2`, each rounded to about an ulp of an O(1) quantity,
-/// while `κ` moves one input by one ulp, which moves `β` by as little as a tenth of that:
-/// measured worst `err/max(κ, κs)` 9.4 on the committed subset (a band 1.6e-7 rad inside
-/// the edge of a 7.8e-5-rad sphere).
-const K_LIGHT: f64 = 16.0;
+use sweep_common::{K, K_LIGHT, Row, Stat, Table, check_size, light_query, rel, report};
 
 /// The committed subset's size (the test refuses fewer).
 const MIN_QUERIES: usize = 1500;
@@ -59,39 +49,9 @@ const SIZES: [(f64, &str); 4] = [
 /// A light whose nearest point is within this of the horizon (rad) counts as near it.
 const NEAR_HORIZON: f64 = 0.01;
 
-fn light(r: &Row) -> Light {
-    if r.u("kind") == 0 {
-        let cone = if r.u("cone") == 0 {
-            Cone::Asin
-        } else {
-            Cone::Atan
-        };
-        Light::sphere(r.a3("l"), r.f("l_r"), cone)
-    } else {
-        let v: Vec<[f32; 3]> = (0..r.u("count")).map(|i| r.a3(&format!("v{i}"))).collect();
-        Light::polygon(&v)
-    }
-}
-
 /// The kernel's value of one row.
 fn kernel_value(r: &Row) -> f32 {
-    let params = LightParams {
-        sigma_um: r.f("sigma"),
-        eta: r.u("eta"),
-        depth_term: r.u("depth_term"),
-        si_mode: 0,
-        bands: 1,
-        pad: [0; 3],
-    };
-    let q = LightQuery {
-        wo: r.a3("wo"),
-        lambda_nm: r.f("lambda_nm"),
-        x: [r.f("x_x"), r.f("x_y")],
-        material: Material::constant(1.0),
-        light: light(r),
-        ..Default::default()
-    };
-    let s = scratches_of(r);
+    let (params, q, s) = light_query(r);
     light_integral(&params, &q, &ScratchSlice { scratches: &s })
 }
 
