@@ -4,7 +4,10 @@
 //! the very f32 inputs the mpmath references evaluated (`reference/lobe1_sweep.py`,
 //! `disk_lobe_sweep.py`, `vmf_ring_sweep.py`), held to the kernel tests' rule
 //! `err ≤ max(1e-4, 8κ)` by the same checks (`kernel/tests/sweep_common/sampling.rs`).
-//! Also counts the results that differ from the same probe compiled for the CPU.
+//! Also counts the results that differ from the same probe compiled for the CPU. Vulkan
+//! lets a device flush subnormal f32 to zero (lavapipe does): a `Lobe1` density whose
+//! exact numerator is below the smallest normal f32 is held only to `0 ≤ pdf ≤ 2·exact`
+//! here (1 of the committed 3 000 queries; `sweep_common::sampling::check_lobe1`).
 //!
 //! The committed subsets run by default; `LOBE1_SWEEP_DIR`, `DISK_LOBE_SWEEP_DIR`,
 //! `VMF_RING_SWEEP_DIR` name larger samples. Run with `--nocapture` for the tables.
@@ -68,7 +71,7 @@ fn lobe1_on_spirv_is_within_the_sweep_bound() {
         }
     }
     let out = run(&gpu, "lobe1", &queries);
-    let bad = check_lobe1(&table, |i, _| {
+    let bad = check_lobe1(&table, true, |i, _| {
         let s = out[3 * i + 2];
         [
             out[3 * i][0],

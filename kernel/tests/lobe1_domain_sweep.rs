@@ -22,7 +22,7 @@ use sweep_common::{Table, check_size};
 fn lobe1_functions_are_within_their_bound_over_the_domain() {
     let table = Table::load("LOBE1_SWEEP_DIR", "reference/golden/sweep", "lobe1");
     check_size("LOBE1_SWEEP_DIR", &table, LOBE1_MIN);
-    let bad = check_lobe1(&table, |_, r| {
+    let bad = check_lobe1(&table, false, |_, r| {
         let l = lobe1_of(r, "");
         let (a, b, x, u) = lobe1_args(r);
         [
