@@ -6,7 +6,7 @@
 //! `err ≤ max(1e-4, 8κ)` by the same checks (`kernel/tests/sweep_common/sampling.rs`).
 //! Also counts the results that differ from the same probe compiled for the CPU. Vulkan
 //! lets a device flush subnormal f32 to zero (lavapipe does): a `Lobe1` density whose
-//! exact numerator is below the smallest normal f32 is held only to `0 ≤ pdf ≤ 2·exact`
+//! exact numerator is below the smallest normal f32 may come out as 0, which is accepted
 //! here (1 of the committed 3 000 queries; `sweep_common::sampling::check_lobe1`).
 //!
 //! The committed subsets run by default; `LOBE1_SWEEP_DIR`, `DISK_LOBE_SWEEP_DIR`,
