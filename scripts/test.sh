@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite: setup, formatting, lints, docs, every crate's tests (including the
-# SPIR-V build and the lavapipe conformance cases), the conformance run and a fuzz smoke
+# SPIR-V build and the lavapipe conformance cases), the conformance run (tables on every
+# backend, scenes rendered on cpu, embree and spirv), a fuzz smoke
 # (scripts/fuzz.sh 20: every cargo-fuzz target for 20 s), and the Python package's pytest
 # suite (scripts/python.sh). Formatting and lints cover the fuzz and Python crates too (each
 # its own workspace).
