@@ -6,7 +6,6 @@ use crate::error::{Result, SpirvError};
 use crate::gpu::{ErrorScopes, Gpu, chunk_alignment};
 use bytemuck::Pod;
 use std::time::{Duration, Instant};
-use wgpu::util::DeviceExt as _;
 
 /// One read-only input buffer of a dispatch; its position in the list is its binding.
 #[derive(Clone, Copy, Debug)]
@@ -106,6 +105,7 @@ impl Gpu {
         progress: &dyn Fn(usize, usize),
     ) -> Result<Dispatched<O>> {
         let plan = self.plan::<O>(entry, inputs, len)?;
+        self.check_alive(&format!("dispatching `{entry}`"))?;
         if len == 0 {
             return Ok(Dispatched {
                 output: Vec::new(),
@@ -129,12 +129,17 @@ impl Gpu {
                 } else {
                     input.bytes
                 };
-                self.device
-                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                        label: Some(&format!("{entry} input {i}")),
-                        contents,
-                        usage: wgpu::BufferUsages::STORAGE,
-                    })
+                // Created unmapped and filled through the queue: a buffer mapped at creation
+                // panics inside wgpu when the device is lost (`tests/faults.rs`); this way
+                // the loss reaches the error scope instead.
+                let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(&format!("{entry} input {i}")),
+                    size: contents.len() as u64,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                });
+                self.queue.write_buffer(&buffer, 0, contents);
+                buffer
             })
             .collect();
         let output_bytes = plan.output_bytes;

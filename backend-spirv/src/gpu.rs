@@ -36,6 +36,8 @@ pub struct Gpu {
     adapter: AdapterSummary,
     module: wgpu::ShaderModule,
     pipelines: Mutex<HashMap<(String, usize), Arc<Pipeline>>>,
+    /// Why the device was lost, once wgpu's device-lost callback has run.
+    lost: Arc<Mutex<Option<String>>>,
     /// Largest chunk (elements) one dispatch covers; see [`Gpu::with_max_chunk`].
     pub(crate) max_chunk: usize,
 }
@@ -100,6 +102,12 @@ impl Gpu {
         device.on_uncaptured_error(Arc::new(|error| {
             eprintln!("scratchwave-spirv: uncaptured wgpu error: {error}");
         }));
+        let lost = Arc::new(Mutex::new(None));
+        let lost_flag = Arc::clone(&lost);
+        device.set_device_lost_callback(move |reason, message| {
+            *lost_flag.lock().unwrap_or_else(PoisonError::into_inner) =
+                Some(format!("{reason:?}: {message}"));
+        });
 
         let words: Vec<u32> = SHADER_SPV
             .chunks_exact(4)
@@ -133,7 +141,31 @@ impl Gpu {
             adapter: summary,
             module,
             pipelines: Mutex::new(HashMap::new()),
+            lost,
         })
+    }
+
+    /// Destroys the device, as a driver reset or the GPU's removal would: every later call
+    /// on this `Gpu` returns [`SpirvError::Gpu`] (`device lost`), never a panic or a hang.
+    /// For fault-injection tests (`tests/faults.rs`); a `Gpu` cannot be revived.
+    pub fn lose_device(&self) {
+        self.device.destroy();
+    }
+
+    /// [`SpirvError::Gpu`] once the device is lost (wgpu's lost callback has run).
+    pub(crate) fn check_alive(&self, during: &str) -> Result<()> {
+        match self
+            .lost
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .as_ref()
+        {
+            None => Ok(()),
+            Some(why) => Err(SpirvError::Gpu {
+                during: during.to_owned(),
+                message: format!("device lost: {why}"),
+            }),
+        }
     }
 
     /// The adapter in use.

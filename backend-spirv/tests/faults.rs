@@ -1,7 +1,8 @@
 //! Injected faults on lavapipe (no real GPU needed): a binding over the device's size limit
 //! (capped with `Gpu::with_max_binding_bytes` so the test need not allocate the real limit)
 //! is a typed error naming the limit, and per-item inputs under the same cap are split into
-//! dispatches that each fit and give the uncapped result. The missing-driver fault is
+//! dispatches that each fit and give the uncapped result; a lost device (`Gpu::lose_device`)
+//! turns every later dispatch into a typed error. The missing-driver fault is
 //! `tests/no_vulkan.rs` (its own process: it hides every Vulkan driver).
 
 mod common;
@@ -60,5 +61,25 @@ fn per_item_inputs_are_split_to_fit_the_binding_budget() {
             );
         }
         other => panic!("expected TooLarge, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_lost_device_is_a_typed_error_not_a_panic() {
+    let Some(gpu) = lavapipe() else { return };
+    let args = linspace(-1.0, 1.0, 256);
+    let before = gpu
+        .math_probe(MathFunction::Exp, &args)
+        .expect("dispatch before the loss");
+    assert_eq!(before.output.len(), args.len());
+    gpu.lose_device();
+    for _ in 0..2 {
+        match gpu.math_probe(MathFunction::Exp, &args) {
+            Err(e @ SpirvError::Gpu { .. }) => {
+                let m = e.to_string();
+                assert!(m.contains("vulkaninfo --summary"), "{m}");
+            }
+            other => panic!("expected SpirvError::Gpu after the device was lost, got {other:?}"),
+        }
     }
 }
