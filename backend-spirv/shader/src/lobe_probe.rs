@@ -1,7 +1,7 @@
 //! One record in, one record out: the scratch models' sampling lobes
 //! (`scratchwave_kernel::bsdf::lobe1d::Lobe1`, `bsdf::lobes::DiskLobe`, Werner §5's
 //! von Mises–Fisher ring), so that their domain sweeps (issue #20) run on SPIR-V too. The
-//! [`crate::lobe_probe`] entry point and the CPU reference run this same [`evaluate`].
+//! [`lobe_probe`](fn@crate::lobe_probe) entry point and the CPU reference run this same [`evaluate`].
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};

@@ -89,7 +89,7 @@ pub fn band_integral(width: f32, q0: f32, q1: f32, si: SiMode) -> f32 {
 /// short interval far from ξ₂ = 0 keeps the digits its ends share (the caller forms `len`
 /// from its own, better-conditioned parameters). Far out on one side the asymptotes cancel
 /// exactly and only the tails are subtracted (relative error `~ε` instead of `~ε·πW|q|`).
-/// An interval shorter than [`DIRECT_SPAN`] (a band that crosses a small light, or only
+/// An interval shorter than 2 rad of the sinc's argument (a band that crosses a small light, or only
 /// clips a corner of a large one) is integrated directly: the difference of two
 /// antiderivatives of size `~W/2` would keep only `ε W/2` of absolute accuracy, 4–11 % off
 /// on chords of 5e-5 – 3e-4 rad in the light sweep (`reference/light_sweep.py`).
