@@ -1,9 +1,12 @@
 //! GHS BRDF on the CPU: batch evaluation and directional albedo (white-furnace) estimates,
 //! both through [`map`] so the scalar and SIMD paths run the same kernel source.
 
+use crate::lanes::{LANES, LaneFn, map_lanes};
 use crate::parallel::{Backend, map};
+use scratchwave_kernel::ghs::g1::G1Table;
 use scratchwave_kernel::ghs::{self, Ghs, GhsParams};
 use scratchwave_kernel::glam::{Vec2, Vec3};
+use scratchwave_kernel::lane::{Lanes, V3};
 use scratchwave_kernel::sampling::ghs::sample_prepared;
 
 /// One BRDF query: directions in the local frame and the wavelength in µm.
@@ -18,10 +21,31 @@ pub struct GhsQuery {
 }
 
 /// `ρ(wi, wo)` for every query.
+/// The SIMD backends run it in batches of [`LANES`] ([`map_lanes`]).
 pub fn evaluate_ghs(backend: Backend, params: &GhsParams, queries: &[GhsQuery]) -> Vec<f32> {
-    map(backend, queries, |q| {
-        ghs::evaluate(params, q.wi, q.wo, q.lambda_um)
-    })
+    map_lanes(backend, queries, &GhsBatch(params))
+}
+
+/// [`ghs::evaluate`] as a [`LaneFn`].
+struct GhsBatch<'a>(&'a GhsParams);
+
+impl LaneFn for GhsBatch<'_> {
+    type In = GhsQuery;
+    type Out = f32;
+    #[inline(always)]
+    fn lanes(&self, q: &[GhsQuery; LANES]) -> [f32; LANES] {
+        ghs::evaluate_lanes(
+            self.0,
+            G1Table::BUILTIN,
+            V3::from_vecs(q.map(|q| q.wi)),
+            V3::from_vecs(q.map(|q| q.wo)),
+            Lanes(q.map(|q| q.lambda_um)),
+        )
+        .0
+    }
+    fn one(&self, q: &GhsQuery) -> f32 {
+        ghs::evaluate(self.0, q.wi, q.wo, q.lambda_um)
+    }
 }
 
 /// Directional albedo `a(θi) = ∫ ρ cosθo dωo` for each `θi`, estimated with the model's own

@@ -14,6 +14,7 @@
 
 mod cpu_backend;
 pub mod ghs;
+pub mod lanes;
 pub mod parallel;
 pub mod table;
 

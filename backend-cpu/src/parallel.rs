@@ -14,7 +14,7 @@ pub enum Backend {
 }
 
 /// Inputs per rayon task: large enough to amortise scheduling, small enough to balance.
-const CHUNK: usize = 256;
+pub(crate) const CHUNK: usize = 256;
 
 /// `out[i] = f(&inputs[i])` on the chosen backend.
 pub fn map<I: Sync, O: Send + Default + Clone, F: Fn(&I) -> O + Sync>(

@@ -35,6 +35,7 @@ pub mod bvh;
 pub mod footprint;
 pub mod fresnel;
 pub mod ghs;
+pub mod lane;
 pub mod lights;
 pub mod material;
 pub mod math;

@@ -9,6 +9,7 @@
 
 use crate::ghs::g1::G1Table;
 use crate::ghs::{self, GhsParams};
+use crate::lane::{Real, V3, branch};
 use crate::material::Material;
 use crate::math;
 use crate::scratch::{
@@ -159,11 +160,32 @@ pub fn evaluate_ghs(p: &GhsParams, q: &TableQuery) -> f32 {
 
 /// [`evaluate_ghs`] reading G1 from `g1_table` (the GPU entry point's storage buffer).
 pub fn evaluate_ghs_with_g1_table(p: &GhsParams, g1_table: G1Table, q: &TableQuery) -> f32 {
-    let wi = direction(q.wi);
-    let wo = direction(q.wo);
-    if !(wi.z > 0.0 && wo.z > 0.0 && q.lambda_nm > 0.0) {
-        return 0.0;
-    }
-    let r = ghs::evaluate_with_g1_table(p, g1_table, wi, wo, um_from_nm(q.lambda_nm));
-    if r.is_finite() && r > 0.0 { r } else { 0.0 }
+    evaluate_ghs_lanes(
+        p,
+        g1_table,
+        direction(q.wi).into(),
+        direction(q.wo).into(),
+        q.lambda_nm,
+    )
+}
+
+/// [`evaluate_ghs_with_g1_table`] for one query per lane, with the directions already
+/// through [`direction`] (the SIMD backend's batch entry point; the one formula).
+#[inline(always)]
+pub fn evaluate_ghs_lanes<R: Real>(
+    p: &GhsParams,
+    g1_table: G1Table,
+    wi: V3<R>,
+    wo: V3<R>,
+    lambda_nm: R,
+) -> R {
+    let zero = R::splat(0.0);
+    branch(
+        wi.z.gt(zero) & wo.z.gt(zero) & lambda_nm.gt(zero),
+        || {
+            let r = ghs::evaluate_lanes(p, g1_table, wi, wo, um_from_nm(lambda_nm));
+            R::select(r.is_finite() & r.gt(zero), r, zero)
+        },
+        || zero,
+    )
 }

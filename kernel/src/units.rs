@@ -1,6 +1,7 @@
 //! Unit conversions every model shares: unit directions from f32 input, λ from nm to µm,
 //! and the two phase quantities that divide by λ in nm (`ξ` and the depth phase).
 
+use crate::lane::Real;
 use crate::math;
 use glam::{Vec2, Vec3};
 
@@ -26,9 +27,9 @@ pub fn direction(v: [f32; 3]) -> Vec3 {
 /// λ in µm from λ in nm, for the prefactors and band widths (`λ_nm · 0.001_f32`: its
 /// 4.7e-8 relative error is harmless there; the phases use [`xi_of`] and
 /// [`depth_half_turns_per_um`], which divide by `λ_nm` instead).
-#[inline]
-pub fn um_from_nm(lambda_nm: f32) -> f32 {
-    lambda_nm * 1.0e-3
+#[inline(always)]
+pub fn um_from_nm<R: Real>(lambda_nm: R) -> R {
+    lambda_nm * R::splat(1.0e-3)
 }
 
 /// `ξ = (wi + wo)_xy / λ` (1/µm; zero in the mirror direction) from λ in nm.

@@ -7,31 +7,32 @@
 //! exponent must be dimensionless; with σs in µm it would also make the result depend on the
 //! length unit).
 
+use crate::lane::Real;
 use crate::math;
 
 /// `(2π σs/λ · x)²` for `sigma_over_lambda = σs/λ`.
-#[inline]
-fn phase_variance(sigma_over_lambda: f32, x: f32) -> f32 {
-    let t = math::TAU * sigma_over_lambda * x;
+#[inline(always)]
+fn phase_variance<R: Real>(sigma_over_lambda: R, x: R) -> R {
+    let t = R::splat(math::TAU) * sigma_over_lambda * x;
     t * t
 }
 
 /// `A` of Eq. 37.
-#[inline]
-pub fn specular_fraction(sigma_over_lambda: f32, cos_i: f32, cos_o: f32) -> f32 {
-    math::exp(-phase_variance(sigma_over_lambda, cos_i + cos_o))
+#[inline(always)]
+pub fn specular_fraction<R: Real>(sigma_over_lambda: R, cos_i: R, cos_o: R) -> R {
+    (-phase_variance(sigma_over_lambda, cos_i + cos_o)).exp()
 }
 
 /// `1 − A` without cancellation for smooth surfaces (σs/λ → 0).
-#[inline]
-pub fn diffracted_fraction(sigma_over_lambda: f32, cos_i: f32, cos_o: f32) -> f32 {
+#[inline(always)]
+pub fn diffracted_fraction<R: Real>(sigma_over_lambda: R, cos_i: R, cos_o: R) -> R {
     -math::expm1(-phase_variance(sigma_over_lambda, cos_i + cos_o))
 }
 
 /// Reflection-lobe attenuation `exp(−(4π σs cosθd/λ)²)` (Eq. 35, corrected).
-#[inline]
-pub fn reflection_attenuation(sigma_over_lambda: f32, cos_d: f32) -> f32 {
-    math::exp(-phase_variance(sigma_over_lambda, 2.0 * cos_d))
+#[inline(always)]
+pub fn reflection_attenuation<R: Real>(sigma_over_lambda: R, cos_d: R) -> R {
+    (-phase_variance(sigma_over_lambda, R::splat(2.0) * cos_d)).exp()
 }
 
 /// `A_imp = exp(−(2π σs/λ cosθi)²)` (Eq. 57): the probability of sampling the micro-facet

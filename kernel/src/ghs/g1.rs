@@ -19,6 +19,7 @@
 //! reasonable time.
 
 use super::tables::g1_table::{G1_LNP_MAX, G1_LNP_MIN, G1_LNV_MAX, G1_LNV_MIN, G1_NP, G1_NV, G1_Q};
+use crate::lane::{Real, branch};
 use crate::math;
 
 /// Smallest supported `p` (the table's first row; smaller values are clamped).
@@ -46,17 +47,6 @@ impl<'a> G1Table<'a> {
     pub fn from_flat(q: &'a [f32]) -> Self {
         G1Table { q }
     }
-
-    /// Entry `(row, col)`, 0 outside the table.
-    #[inline]
-    fn at(&self, row: usize, col: usize) -> f32 {
-        let i = row * G1_NV + col;
-        if row < G1_NP && col < G1_NV && i < self.q.len() {
-            self.q[i]
-        } else {
-            0.0
-        }
-    }
 }
 
 /// Mean positive slope of the unit-β marginal `P2`: `m(p) = Γ(3/(2p)) / (π Γ(1/p))`.
@@ -66,56 +56,68 @@ pub fn mean_slope(p: f32) -> f32 {
 }
 
 /// Weights of 4-point Lagrange interpolation at `t` for nodes at −1, 0, 1, 2.
-#[inline]
-fn lagrange4(t: f32) -> [f32; 4] {
+#[inline(always)]
+fn lagrange4<R: Real>(t: R) -> [R; 4] {
+    let c = R::splat;
+    let (one, two) = (c(1.0), c(2.0));
     [
-        -t * (t - 1.0) * (t - 2.0) * (1.0 / 6.0),
-        (t + 1.0) * (t - 1.0) * (t - 2.0) * 0.5,
-        -(t + 1.0) * t * (t - 2.0) * 0.5,
-        (t + 1.0) * t * (t - 1.0) * (1.0 / 6.0),
+        -t * (t - one) * (t - two) * c(1.0 / 6.0),
+        (t + one) * (t - one) * (t - two) * c(0.5),
+        -(t + one) * t * (t - two) * c(0.5),
+        (t + one) * t * (t - one) * c(1.0 / 6.0),
     ]
 }
 
-/// Cell index (clamped to `[1, n − 3]`) and fractional offset of `x` on a uniform grid.
-#[inline]
-fn cell(x: f32, lo: f32, hi: f32, n: usize) -> (usize, f32) {
-    let f = (x - lo) / (hi - lo) * (n - 1) as f32;
-    let fl = math::clamp(math::floor(f), 1.0, (n - 3) as f32);
-    (fl as usize, f - fl)
+/// Cell index (clamped to `[1, n − 3]`, as a float) and fractional offset of `x` on a
+/// uniform grid.
+#[inline(always)]
+fn cell<R: Real>(x: R, lo: f32, hi: f32, n: usize) -> (R, R) {
+    let c = R::splat;
+    let f = (x - c(lo)) / c(hi - lo) * c((n - 1) as f32);
+    let fl = math::clamp(f.floor(), c(1.0), c((n - 3) as f32));
+    (fl, f - fl)
 }
 
 /// `G1` for the precomputed `v = β tanθ · m(p)` and `ln p` (clamped to the table).
 pub fn g1_from_v(table: &G1Table, v: f32, ln_p: f32) -> f32 {
-    if !(v > 0.0) {
-        return 1.0;
-    }
-    let lnv = math::ln(v);
-    if lnv <= G1_LNV_MIN {
-        return 1.0;
-    }
-    if lnv >= G1_LNV_MAX {
-        return 1.0 / (v + 0.5);
-    }
-    let lnp = math::clamp(ln_p, G1_LNP_MIN, G1_LNP_MAX);
-    let (iv, tv) = cell(lnv, G1_LNV_MIN, G1_LNV_MAX, G1_NV);
-    let (ip, tp) = cell(lnp, G1_LNP_MIN, G1_LNP_MAX, G1_NP);
-    let wv = lagrange4(tv);
-    let wp = lagrange4(tp);
-    let mut q = 0.0;
-    let mut a = 0;
-    while a < 4 {
-        let row = ip + a - 1;
-        let mut s = 0.0;
-        let mut b = 0;
-        while b < 4 {
-            let col = iv + b - 1;
-            s += wv[b] * table.at(row, col);
-            b += 1;
-        }
-        q += wp[a] * s;
-        a += 1;
-    }
-    math::clamp(q / (1.0 + v), 0.0, 1.0)
+    g1_from_v_lanes(table, v, ln_p)
+}
+
+/// [`g1_from_v`] for any [`Real`] `v` (the one formula; each lane reads its own table
+/// column, the row is shared).
+#[inline(always)]
+pub fn g1_from_v_lanes<R: Real>(table: &G1Table, v: R, ln_p: f32) -> R {
+    let c = R::splat;
+    let lnv = v.ln();
+    let flat = !v.gt(c(0.0)) | lnv.le(c(G1_LNV_MIN));
+    let tail = lnv.ge(c(G1_LNV_MAX));
+    branch(
+        flat | tail,
+        || R::select(flat, c(1.0), c(1.0) / (v + c(0.5))),
+        || {
+            let lnp = math::clamp(ln_p, G1_LNP_MIN, G1_LNP_MAX);
+            let (iv, tv) = cell(lnv, G1_LNV_MIN, G1_LNV_MAX, G1_NV);
+            let (ip, tp) = cell(lnp, G1_LNP_MIN, G1_LNP_MAX, G1_NP);
+            let wv = lagrange4(tv);
+            let wp = lagrange4(tp);
+            let mut q = c(0.0);
+            let mut a = 0;
+            while a < 4 {
+                // Row `ip + a − 1`, column `iv + b − 1`: integers far below 2²⁴, exact.
+                let row_start = (ip + a as f32 - 1.0) * G1_NV as f32;
+                let mut s = c(0.0);
+                let mut b = 0;
+                while b < 4 {
+                    let i = c(row_start) + iv + c(b as f32 - 1.0);
+                    s = s + wv[b] * R::gather(table.q, i);
+                    b += 1;
+                }
+                q = q + c(wp[a]) * s;
+                a += 1;
+            }
+            math::clamp(q / (c(1.0) + v), c(0.0), c(1.0))
+        },
+    )
 }
 
 /// `G1(θ)` for `tanθ = tan_theta`, width `β` and kurtosis `p` (Eq. 42), from the builtin

@@ -22,6 +22,7 @@
 //! reported by `reference/ghs/generate.py` (`golden/fresnel_dr.json`).
 
 use crate::fresnel::fresnel;
+use crate::lane::Real;
 use crate::math;
 
 gpu_enum! {
@@ -61,9 +62,10 @@ pub fn fresnel_diffuse_reflectance(eta: f32) -> f32 {
 }
 
 /// Interface transmittance `T` (Eq. 44).
-#[inline]
-pub fn transmittance(cos_i: f32, cos_o: f32, n: f32, k: f32) -> f32 {
-    (1.0 - fresnel(cos_i, n, k)) * (1.0 - fresnel(cos_o, n, k))
+#[inline(always)]
+pub fn transmittance<R: Real>(cos_i: R, cos_o: R, n: f32, k: f32) -> R {
+    let one = R::splat(1.0);
+    (one - fresnel(cos_i, n, k)) * (one - fresnel(cos_o, n, k))
 }
 
 /// Inter-reflection factor of the plastic layer (the bracket of Eq. 49 / its correction).
@@ -79,8 +81,12 @@ fn plastic_series(rho_d: f32, n: f32, form: LayerForm) -> f32 {
 }
 
 /// `ρ_plastic` (Eq. 49) for diffuse reflectance `rho_d` under an interface of index `n + ik`.
-pub fn plastic(cos_i: f32, cos_o: f32, n: f32, k: f32, rho_d: f32, form: LayerForm) -> f32 {
-    transmittance(cos_i, cos_o, n, k) * rho_d * (1.0 / math::PI) * plastic_series(rho_d, n, form)
+#[inline(always)]
+pub fn plastic<R: Real>(cos_i: R, cos_o: R, n: f32, k: f32, rho_d: f32, form: LayerForm) -> R {
+    transmittance(cos_i, cos_o, n, k)
+        * R::splat(rho_d)
+        * R::splat(1.0 / math::PI)
+        * R::splat(plastic_series(rho_d, n, form))
 }
 
 /// `E_D` of the plastic layer (Eq. 52) for lobe selection.
@@ -103,13 +109,15 @@ fn subsurface_rd(n: f32, albedo: f32, form: LayerForm) -> f32 {
 }
 
 /// `ρ_SSS = single + multi` (Eqs. 45–48); the refracted cosines use the real part `n`.
-pub fn subsurface(cos_i: f32, cos_o: f32, n: f32, k: f32, albedo: f32, form: LayerForm) -> f32 {
+#[inline(always)]
+pub fn subsurface<R: Real>(cos_i: R, cos_o: R, n: f32, k: f32, albedo: f32, form: LayerForm) -> R {
+    let c = R::splat;
     let t = transmittance(cos_i, cos_o, n, k);
-    let inv_n2 = 1.0 / (n * n);
-    let cti = math::sqrt0(1.0 - (1.0 - cos_i * cos_i) * inv_n2);
-    let cto = math::sqrt0(1.0 - (1.0 - cos_o * cos_o) * inv_n2);
-    let single = albedo * t * (0.25 / math::PI) / math::max(cti + cto, 1.0e-6);
-    let multi = t * (1.0 / math::PI) * subsurface_rd(n, albedo, form);
+    let inv_n2 = c(1.0 / (n * n));
+    let cti = math::sqrt0(c(1.0) - (c(1.0) - cos_i * cos_i) * inv_n2);
+    let cto = math::sqrt0(c(1.0) - (c(1.0) - cos_o * cos_o) * inv_n2);
+    let single = c(albedo) * t * c(0.25 / math::PI) / math::max(cti + cto, c(1.0e-6));
+    let multi = t * c(1.0 / math::PI) * c(subsurface_rd(n, albedo, form));
     single + multi
 }
 

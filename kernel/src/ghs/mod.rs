@@ -31,6 +31,7 @@ pub mod spread;
 pub mod tables;
 
 use crate::fresnel::fresnel;
+use crate::lane::{Real, V3, branch};
 use crate::math;
 use bytemuck::{Pod, Zeroable};
 use g1::G1Table;
@@ -162,13 +163,15 @@ impl GhsParams {
 }
 
 /// A GHS material prepared for one wavelength: clamped parameters, derived constants and
-/// the G1 table it reads (`'t`: the table's borrow; `'static` for the builtin one).
+/// the G1 table it reads (`'t`: the table's borrow; `'static` for the builtin one). The
+/// wavelength-dependent fields are [`Real`]s: one wavelength per lane in the SIMD backend,
+/// `f32` (the default) everywhere else.
 #[derive(Clone, Copy, Debug)]
-pub struct Ghs<'t> {
+pub struct Ghs<'t, R = f32> {
     /// The Smith G1 table.
     pub g1_table: G1Table<'t>,
     /// σs/λ.
-    pub sigma_over_lambda: f32,
+    pub sigma_over_lambda: R,
     /// The NDF.
     pub ndf: GenBeckmann,
     /// `ln p` (G1 table row).
@@ -176,7 +179,7 @@ pub struct Ghs<'t> {
     /// `β · m(p)`: `v = tanθ · beta_m` is the G1 table's abscissa.
     pub beta_m: f32,
     /// The diffraction lobe.
-    pub spread: KCorrelation,
+    pub spread: KCorrelation<R>,
     /// IOR real part.
     pub n: f32,
     /// IOR imaginary part.
@@ -192,9 +195,9 @@ pub struct Ghs<'t> {
 }
 
 /// `x` if finite and within `[lo, hi]`, else the nearest bound (NaN → `lo`).
-#[inline]
-fn sane(x: f32, lo: f32, hi: f32) -> f32 {
-    math::clamp(x, lo, hi)
+#[inline(always)]
+fn sane<R: Real>(x: R, lo: f32, hi: f32) -> R {
+    math::clamp(x, R::splat(lo), R::splat(hi))
 }
 
 impl Ghs<'static> {
@@ -204,24 +207,25 @@ impl Ghs<'static> {
     }
 }
 
-impl<'t> Ghs<'t> {
+impl<'t, R: Real> Ghs<'t, R> {
     /// Clamps `params` into the supported ranges ([`limits`], [`g1::P_MIN`]…) and
     /// precomputes the wavelength-dependent constants. `lambda_um` is clamped to ≥ 1e-3 µm.
-    pub fn with_g1_table(params: &GhsParams, lambda_um: f32, g1_table: G1Table<'t>) -> Ghs<'t> {
+    #[inline(always)]
+    pub fn with_g1_table(params: &GhsParams, lambda_um: R, g1_table: G1Table<'t>) -> Self {
         let lambda = sane(lambda_um, 1.0e-3, 1.0e3);
         let p = sane(params.p, g1::P_MIN, g1::P_MAX);
         let beta = sane(params.beta, limits::BETA_MIN, limits::BETA_MAX);
         let ndf = GenBeckmann::new(beta, p);
         let c = sane(params.c, 1.0 + limits::C_MINUS_1_MIN, limits::C_MAX);
         let b = sane(
-            params.b_um / lambda,
+            R::splat(params.b_um) / lambda,
             limits::B_OVER_LAMBDA_MIN,
             limits::B_OVER_LAMBDA_MAX,
         );
         Ghs {
             g1_table,
             sigma_over_lambda: sane(
-                params.sigma_s_um / lambda,
+                R::splat(params.sigma_s_um) / lambda,
                 0.0,
                 limits::SIGMA_OVER_LAMBDA_MAX,
             ),
@@ -238,63 +242,77 @@ impl<'t> Ghs<'t> {
         }
     }
 
-    /// Smith `G1` for a direction with `cosθ = cos_t` (> 0).
-    #[inline]
-    pub fn g1(&self, cos_t: f32) -> f32 {
-        let c = math::max(cos_t, limits::COS_MIN);
-        let tan = math::sqrt0(1.0 - c * c) / c;
-        g1::g1_from_v(&self.g1_table, tan * self.beta_m, self.ln_p)
+    /// [`Ghs::g1`] in lanes.
+    #[inline(always)]
+    pub fn g1_lanes(&self, cos_t: R) -> R {
+        let c = math::max(cos_t, R::splat(limits::COS_MIN));
+        let tan = math::sqrt0(R::splat(1.0) - c * c) / c;
+        g1::g1_from_v_lanes(&self.g1_table, tan * R::splat(self.beta_m), self.ln_p)
     }
 
-    /// `σ_rel²` for the incident direction `wi`.
-    #[inline]
-    pub fn sigma_rel_sq(&self, wi: Vec3) -> f32 {
-        self.spread.sigma_rel_sq(math::sqrt0(1.0 - wi.z * wi.z))
+    /// [`Ghs::sigma_rel_sq`] in lanes.
+    #[inline(always)]
+    pub fn sigma_rel_sq_lanes(&self, wi: V3<R>) -> R {
+        self.spread
+            .sigma_rel_sq(math::sqrt0(R::splat(1.0) - wi.z * wi.z))
     }
 
-    /// The micro-facet (reflection) lobe, Eq. 35 (corrected).
-    pub fn reflection(&self, wi: Vec3, wo: Vec3) -> f32 {
-        let Some((h, cos_d)) = half_vector(wi, wo) else {
-            return 0.0;
-        };
-        let ci = math::max(wi.z, limits::COS_MIN);
-        let co = math::max(wo.z, limits::COS_MIN);
-        let g = self.g1(ci) * self.g1(co);
-        energy::reflection_attenuation(self.sigma_over_lambda, cos_d)
-            * fresnel(cos_d, self.n, self.k)
-            * self.ndf.d(h)
-            * g
-            / (4.0 * ci * co)
-    }
-
-    /// The diffraction lobe, Eq. 36 with colour; `sigma_rel_sq` from [`Self::sigma_rel_sq`].
-    pub fn diffraction(&self, wi: Vec3, wo: Vec3, sigma_rel_sq: f32) -> f32 {
-        let one_minus_a = energy::diffracted_fraction(self.sigma_over_lambda, wi.z, wo.z);
-        if !(one_minus_a > 0.0) || !(sigma_rel_sq > 0.0) {
-            return 0.0;
-        }
-        // r = |i_p + o_p| (the lobe's offset from the mirror direction), with the length
-        // correction of `direction_sum` where the two nearly cancel
-        let d = direction_sum(wi, wo);
-        let r = math::sqrt(d.x * d.x + d.y * d.y);
-        let s = self.spread.density(r) / sigma_rel_sq;
-        let g = self.g1(wi.z) * self.g1(wo.z);
-        let colour = match self.diff_color {
-            DiffColor::HalfQ => 0.5 * color::diffraction_color(wi, wo, self.n, self.k),
-            DiffColor::Q => color::diffraction_color(wi, wo, self.n, self.k),
-            DiffColor::Fresnel => match half_vector(wi, wo) {
-                Some((_, cos_d)) => fresnel(cos_d, self.n, self.k),
-                None => 0.0,
+    /// [`Ghs::reflection`] in lanes.
+    #[inline(always)]
+    pub fn reflection_lanes(&self, wi: V3<R>, wo: V3<R>) -> R {
+        let (h, cos_d, ok) = half_vector_lanes(wi, wo);
+        branch(
+            ok,
+            || {
+                let ci = math::max(wi.z, R::splat(limits::COS_MIN));
+                let co = math::max(wo.z, R::splat(limits::COS_MIN));
+                let g = self.g1_lanes(ci) * self.g1_lanes(co);
+                energy::reflection_attenuation(self.sigma_over_lambda, cos_d)
+                    * fresnel(cos_d, self.n, self.k)
+                    * self.ndf.d_lanes(h)
+                    * g
+                    / (R::splat(4.0) * ci * co)
             },
-            DiffColor::None => 1.0,
-        };
-        one_minus_a * s * g * colour
+            || R::splat(0.0),
+        )
     }
 
-    /// The diffuse layer's lobe (Eq. 49 or Eqs. 45–48), 0 without a layer.
-    pub fn layer_lobe(&self, wi: Vec3, wo: Vec3) -> f32 {
+    /// [`Ghs::diffraction`] in lanes.
+    #[inline(always)]
+    pub fn diffraction_lanes(&self, wi: V3<R>, wo: V3<R>, sigma_rel_sq: R) -> R {
+        let zero = R::splat(0.0);
+        let one_minus_a = energy::diffracted_fraction(self.sigma_over_lambda, wi.z, wo.z);
+        branch(
+            one_minus_a.gt(zero) & sigma_rel_sq.gt(zero),
+            || {
+                // r = |i_p + o_p| (the lobe's offset from the mirror direction), with the
+                // length correction of `direction_sum` where the two nearly cancel
+                let d = direction_sum_lanes(wi, wo);
+                let r = (d.x * d.x + d.y * d.y).sqrt();
+                let s = self.spread.density(r) / sigma_rel_sq;
+                let g = self.g1_lanes(wi.z) * self.g1_lanes(wo.z);
+                let colour = match self.diff_color {
+                    DiffColor::HalfQ => {
+                        R::splat(0.5) * color::diffraction_color_lanes(wi, wo, self.n, self.k)
+                    }
+                    DiffColor::Q => color::diffraction_color_lanes(wi, wo, self.n, self.k),
+                    DiffColor::Fresnel => {
+                        let (_, cos_d, ok) = half_vector_lanes(wi, wo);
+                        R::select(ok, fresnel(cos_d, self.n, self.k), zero)
+                    }
+                    DiffColor::None => R::splat(1.0),
+                };
+                one_minus_a * s * g * colour
+            },
+            || zero,
+        )
+    }
+
+    /// [`Ghs::layer_lobe`] in lanes.
+    #[inline(always)]
+    pub fn layer_lobe_lanes(&self, wi: V3<R>, wo: V3<R>) -> R {
         match self.layer {
-            Layer::None => 0.0,
+            Layer::None => R::splat(0.0),
             Layer::Plastic => layers::plastic(
                 wi.z,
                 wo.z,
@@ -314,22 +332,67 @@ impl<'t> Ghs<'t> {
         }
     }
 
+    /// [`Ghs::eval_with_sigma_rel`] in lanes.
+    #[inline(always)]
+    pub fn eval_with_sigma_rel_lanes(&self, wi: V3<R>, wo: V3<R>, sigma_rel_sq: R) -> R {
+        let zero = R::splat(0.0);
+        branch(
+            wi.z.gt(zero) & wo.z.gt(zero),
+            || {
+                let v = self.reflection_lanes(wi, wo)
+                    + self.diffraction_lanes(wi, wo, sigma_rel_sq)
+                    + self.layer_lobe_lanes(wi, wo);
+                R::select(v.is_finite(), v, zero)
+            },
+            || zero,
+        )
+    }
+
+    /// [`Ghs::eval`] in lanes.
+    #[inline(always)]
+    pub fn eval_lanes(&self, wi: V3<R>, wo: V3<R>) -> R {
+        self.eval_with_sigma_rel_lanes(wi, wo, self.sigma_rel_sq_lanes(wi))
+    }
+}
+
+impl<'t> Ghs<'t> {
+    /// Smith `G1` for a direction with `cosθ = cos_t` (> 0).
+    #[inline]
+    pub fn g1(&self, cos_t: f32) -> f32 {
+        self.g1_lanes(cos_t)
+    }
+
+    /// `σ_rel²` for the incident direction `wi`.
+    #[inline]
+    pub fn sigma_rel_sq(&self, wi: Vec3) -> f32 {
+        self.sigma_rel_sq_lanes(wi.into())
+    }
+
+    /// The micro-facet (reflection) lobe, Eq. 35 (corrected).
+    pub fn reflection(&self, wi: Vec3, wo: Vec3) -> f32 {
+        self.reflection_lanes(wi.into(), wo.into())
+    }
+
+    /// The diffraction lobe, Eq. 36 with colour; `sigma_rel_sq` from [`Self::sigma_rel_sq`].
+    pub fn diffraction(&self, wi: Vec3, wo: Vec3, sigma_rel_sq: f32) -> f32 {
+        self.diffraction_lanes(wi.into(), wo.into(), sigma_rel_sq)
+    }
+
+    /// The diffuse layer's lobe (Eq. 49 or Eqs. 45–48), 0 without a layer.
+    pub fn layer_lobe(&self, wi: Vec3, wo: Vec3) -> f32 {
+        self.layer_lobe_lanes(wi.into(), wo.into())
+    }
+
     /// Full BRDF with a precomputed `σ_rel²(θi)` (hoist it when `wi` is fixed).
     #[inline]
     pub fn eval_with_sigma_rel(&self, wi: Vec3, wo: Vec3, sigma_rel_sq: f32) -> f32 {
-        if !(wi.z > 0.0) || !(wo.z > 0.0) {
-            return 0.0;
-        }
-        let v = self.reflection(wi, wo)
-            + self.diffraction(wi, wo, sigma_rel_sq)
-            + self.layer_lobe(wi, wo);
-        if v.is_finite() { v } else { 0.0 }
+        self.eval_with_sigma_rel_lanes(wi.into(), wo.into(), sigma_rel_sq)
     }
 
     /// Full BRDF ρ(wi, wo) in 1/sr, without the cosine.
     #[inline]
     pub fn eval(&self, wi: Vec3, wo: Vec3) -> f32 {
-        self.eval_with_sigma_rel(wi, wo, self.sigma_rel_sq(wi))
+        self.eval_lanes(wi.into(), wo.into())
     }
 }
 
@@ -345,8 +408,14 @@ impl<'t> Ghs<'t> {
 /// small exactly where the sum cancels.
 #[inline]
 pub fn direction_sum(wi: Vec3, wo: Vec3) -> Vec3 {
+    direction_sum_lanes(wi.into(), wo.into()).into()
+}
+
+/// [`direction_sum`] for any [`Real`] (the one formula).
+#[inline(always)]
+pub fn direction_sum_lanes<R: Real>(wi: V3<R>, wo: V3<R>) -> V3<R> {
     let s = wi + wo;
-    let rho_m1 = 0.5 * (wi - wo).dot(s);
+    let rho_m1 = R::splat(0.5) * (wi - wo).dot(s);
     s + wo * rho_m1
 }
 
@@ -354,13 +423,22 @@ pub fn direction_sum(wi: Vec3, wo: Vec3) -> Vec3 {
 /// vanishes.
 #[inline]
 pub fn half_vector(wi: Vec3, wo: Vec3) -> Option<(Vec3, f32)> {
-    let s = direction_sum(wi, wo);
+    let (h, cos_d, ok) = half_vector_lanes(wi.into(), wo.into());
+    if ok { Some((h.into(), cos_d)) } else { None }
+}
+
+/// [`half_vector`] for any [`Real`]: `(h, cosθd, defined)`, where `h` and `cosθd` are
+/// meaningless in the lanes that are not `defined`.
+#[inline(always)]
+pub fn half_vector_lanes<R: Real>(wi: V3<R>, wo: V3<R>) -> (V3<R>, R, R::Mask) {
+    let s = direction_sum_lanes(wi, wo);
     let l2 = s.dot(s);
-    if !(l2 > 1.0e-30) {
-        return None;
-    }
-    let h = s * (1.0 / math::sqrt(l2));
-    Some((h, math::clamp(wi.dot(h), 0.0, 1.0)))
+    let h = s * (R::splat(1.0) / l2.sqrt());
+    (
+        h,
+        math::clamp(wi.dot(h), R::splat(0.0), R::splat(1.0)),
+        l2.gt(R::splat(1.0e-30)),
+    )
 }
 
 /// The GHS BRDF ρ(wi, wo) in 1/sr without the cosine, at wavelength `lambda_um` (µm).
@@ -379,4 +457,17 @@ pub fn evaluate_with_g1_table(
     lambda_um: f32,
 ) -> f32 {
     Ghs::with_g1_table(params, lambda_um, g1_table).eval(wi, wo)
+}
+
+/// [`evaluate_with_g1_table`] for one query per lane (the SIMD backend's batch entry point):
+/// the parameters and the table are shared, the directions and wavelengths are per lane.
+#[inline(always)]
+pub fn evaluate_lanes<R: Real>(
+    params: &GhsParams,
+    g1_table: G1Table,
+    wi: V3<R>,
+    wo: V3<R>,
+    lambda_um: R,
+) -> R {
+    Ghs::with_g1_table(params, lambda_um, g1_table).eval_lanes(wi, wo)
 }

@@ -9,6 +9,7 @@
 //! `tanθ = β · y^{1/(2p)}`, `y = Q⁻¹(1/p, u)` (H&P Eq. 59 prints the exponent as `c/2`; it is
 //! `1/(2p)` — erratum, confirmed by the χ² test of this warp).
 
+use crate::lane::{Real, V3, branch};
 use crate::math;
 use glam::Vec3;
 
@@ -31,15 +32,15 @@ impl GenBeckmann {
     }
 
     /// Slope density `P22(tan²θ)` (Eq. 39).
-    #[inline]
-    pub fn p22(&self, tan2: f32) -> f32 {
-        let x = tan2 / (self.beta * self.beta);
-        let y = if x > 0.0 {
-            math::exp(self.p * math::ln(x))
-        } else {
-            0.0
-        };
-        math::exp(self.ln_norm - y)
+    #[inline(always)]
+    pub fn p22<R: Real>(&self, tan2: R) -> R {
+        let x = tan2 / R::splat(self.beta * self.beta);
+        let y = branch(
+            x.gt(R::splat(0.0)),
+            || (R::splat(self.p) * x.ln()).exp(),
+            || R::splat(0.0),
+        );
+        (R::splat(self.ln_norm) - y).exp()
     }
 
     /// `D(h)` (H&P Eq. 38) for a half vector `h` of any length (≥ 1e-18) with `h_z > 0`; 0
@@ -53,19 +54,18 @@ impl GenBeckmann {
     /// unnormalised half vector may be passed.
     #[inline]
     pub fn d(&self, h: Vec3) -> f32 {
-        if !(h.z > 0.0) {
-            return 0.0;
-        }
+        self.d_lanes(h.into())
+    }
+
+    /// [`Self::d`] for any [`Real`] (the one formula).
+    #[inline(always)]
+    pub fn d_lanes<R: Real>(&self, h: V3<R>) -> R {
+        let zero = R::splat(0.0);
         let tan2 = (h.x * h.x + h.y * h.y) / (h.z * h.z);
         let p22 = self.p22(tan2);
-        // tan²θ → ∞ (grazing h) makes P22 = 0 before (1 + tan²θ)² overflows; the finiteness
-        // test catches the rest (an h_z² that underflowed to 0)
-        if !(p22 > 0.0) {
-            return 0.0;
-        }
-        let sec2 = 1.0 + tan2;
+        let sec2 = R::splat(1.0) + tan2;
         let v = p22 * sec2 * sec2;
-        if v.is_finite() { v } else { 0.0 }
+        R::select(h.z.gt(zero) & p22.gt(zero) & v.is_finite(), v, zero)
     }
 
     /// `tanθh` of a sampled microfacet normal for `u ∈ [0, 1)` (upper-tail inverse, so

@@ -24,102 +24,111 @@
 //! `kernel/tests/ghs_golden.rs`.
 
 use super::tables::gauss_legendre::{GL_N, GL_WS, GL_XI};
+use crate::lane::{Real, branch};
 use crate::math;
 
-/// K-correlation lobe in the projected-direction plane, `B = b/λ`, falloff `c > 1`.
+/// K-correlation lobe in the projected-direction plane, `B = b/λ`, falloff `c > 1`. `B` is a
+/// [`Real`] (one wavelength per lane in the SIMD backend); `f32` by default.
 #[derive(Clone, Copy, Debug)]
-pub struct KCorrelation {
+pub struct KCorrelation<R = f32> {
     /// `b/λ`.
-    pub b: f32,
+    pub b: R,
     /// Falloff exponent `c`.
     pub c: f32,
 }
 
-impl KCorrelation {
+impl<R: Real> KCorrelation<R> {
     /// `L(r) = ln(1 + B² r²)`.
-    #[inline]
-    fn log_arg(&self, r: f32) -> f32 {
+    #[inline(always)]
+    fn log_arg(&self, r: R) -> R {
         let br = self.b * r;
         math::ln1p(br * br)
     }
 
     /// `k(r)`: the unit-normalised 2-D density (1/sr in the projected-disk measure).
-    #[inline]
-    pub fn density(&self, r: f32) -> f32 {
-        (self.c - 1.0)
+    #[inline(always)]
+    pub fn density(&self, r: R) -> R {
+        R::splat(self.c - 1.0)
             * self.b
             * self.b
-            * (0.5 / math::PI)
-            * math::exp(-0.5 * (self.c + 1.0) * self.log_arg(r))
+            * R::splat(0.5 / math::PI)
+            * (R::splat(-0.5 * (self.c + 1.0)) * self.log_arg(r)).exp()
     }
 
     /// Radial CDF `W(r) = 1 − (1 + B²r²)^{−(c−1)/2}`.
-    #[inline]
-    pub fn cdf(&self, r: f32) -> f32 {
-        -math::expm1(-0.5 * (self.c - 1.0) * self.log_arg(r))
+    #[inline(always)]
+    pub fn cdf(&self, r: R) -> R {
+        -math::expm1(R::splat(-0.5 * (self.c - 1.0)) * self.log_arg(r))
     }
 
     /// The radius `r` with `ln(1 + B² r²) = l`.
-    #[inline]
-    fn radius_from_log_arg(&self, l: f32) -> f32 {
+    #[inline(always)]
+    fn radius_from_log_arg(&self, l: R) -> R {
         math::sqrt0(math::expm1(l)) / self.b
     }
 
     /// Radius for the CDF value `w` (`W⁻¹`; Eq. 60 with `w = M u`).
-    #[inline]
-    pub fn radius_from_cdf(&self, w: f32) -> f32 {
-        let l = -2.0 / (self.c - 1.0) * math::ln1p(-math::min(w, 1.0));
+    #[inline(always)]
+    pub fn radius_from_cdf(&self, w: R) -> R {
+        let l = R::splat(-2.0 / (self.c - 1.0)) * math::ln1p(-math::min(w, R::splat(1.0)));
         self.radius_from_log_arg(l)
     }
 
     /// `σ_rel²(sinθi)`: the fraction of the lobe centred at distance `s` from the disk
     /// centre that falls inside the unit disk.
-    pub fn sigma_rel_sq(&self, s: f32) -> f32 {
-        let s = math::clamp(s, 0.0, 1.0);
+    #[inline(always)]
+    pub fn sigma_rel_sq(&self, s: R) -> R {
+        let c = R::splat;
+        let s = math::clamp(s, c(0.0), c(1.0));
         let h = 0.5 * (self.c - 1.0);
-        let l0 = self.log_arg(1.0 - s);
-        let l1 = self.log_arg(1.0 + s);
-        let w0 = -math::expm1(-h * l0);
-        if s < 1.0e-6 {
-            return w0;
-        }
-        // Tail values v = 1 − W: v0 at r0, v1 at r1, Δ = v0 − v1 without cancellation.
-        let v0 = math::exp(-h * l0);
-        let frac = -math::expm1(-h * (l1 - l0)); // Δ / v0
-        let delta = v0 * frac;
-        if !(delta > 0.0) {
-            return w0;
-        }
-        let mut sum = 0.0;
-        let mut k = 0;
-        while k < GL_N {
-            // ξ ∈ [0, 1]; v = v0 (1 − frac ξ); ln(1 + B²r²) = −ln v / h.
-            let l = l0 - math::ln1p(-frac * GL_XI[k]) / h;
-            let r = self.radius_from_log_arg(l);
-            sum += GL_WS[k] * phi_max(r, s);
-            k += 1;
-        }
-        // ∫ (φmax/π) dW = Δ ∫₀¹ (φmax/π) dξ.
-        sum *= 1.0 / math::PI;
-        math::clamp(w0 + delta * sum, 0.0, 1.0)
+        let l0 = self.log_arg(c(1.0) - s);
+        let l1 = self.log_arg(c(1.0) + s);
+        let w0 = -math::expm1(-c(h) * l0);
+        branch(
+            s.lt(c(1.0e-6)),
+            || w0,
+            || {
+                let v0 = (-c(h) * l0).exp();
+                let frac = -math::expm1(-c(h) * (l1 - l0)); // Δ / v0
+                let delta = v0 * frac;
+                branch(
+                    !delta.gt(c(0.0)),
+                    || w0,
+                    || {
+                        let mut sum = c(0.0);
+                        let mut k = 0;
+                        while k < GL_N {
+                            let l = l0 - math::ln1p(-frac * c(GL_XI[k])) / c(h);
+                            let r = self.radius_from_log_arg(l);
+                            sum = sum + c(GL_WS[k]) * phi_max(r, s);
+                            k += 1;
+                        }
+                        sum = sum * c(1.0 / math::PI);
+                        math::clamp(w0 + delta * sum, c(0.0), c(1.0))
+                    },
+                )
+            },
+        )
     }
 }
 
 /// Half-angle of the arc of the circle of radius `r` about the lobe centre (at distance `s`
 /// from the disk centre) that lies inside the unit disk (Eq. 62): π for `r ≤ 1 − s`, 0 for
-/// `r ≥ 1 + s`.
-#[inline]
-pub fn phi_max(r: f32, s: f32) -> f32 {
+/// `r ≥ 1 + s`. Any [`Real`].
+#[inline(always)]
+pub fn phi_max<R: Real>(r: R, s: R) -> R {
+    let c = R::splat;
     let rs = r * s;
-    if !(rs > 1.0e-12) {
-        return if r < 1.0 { math::PI } else { 0.0 };
-    }
-    let arg = (r * r + s * s - 1.0) / (2.0 * rs);
-    if arg <= -1.0 {
-        math::PI
-    } else if arg >= 1.0 {
-        0.0
-    } else {
-        math::acos(arg)
-    }
+    branch(
+        !rs.gt(c(1.0e-12)),
+        || R::select(r.lt(c(1.0)), c(math::PI), c(0.0)),
+        || {
+            let arg = (r * r + s * s - c(1.0)) / (c(2.0) * rs);
+            branch(
+                arg.gt(c(-1.0)) & arg.lt(c(1.0)),
+                || math::acos(arg),
+                || R::select(arg.le(c(-1.0)), c(math::PI), c(0.0)),
+            )
+        },
+    )
 }

@@ -11,7 +11,8 @@
 //! against f64 libm (tests below): `atan2` ≤ 2.4 ULP, `asin`/`acos` ≤ 3.0 ULP (libm's f32
 //! functions: ≤ 1 ULP; the price is the argument reduction's roundings).
 
-use super::{abs, clamp, sqrt0};
+use super::{clamp, sqrt0};
+use crate::lane::{Real, branch};
 
 /// `tan(π/8)`.
 const TAN_PI_8: f32 = 0.414_213_57;
@@ -35,17 +36,15 @@ const QUARTER_PI_LO: [f32; 5] = [
 /// `P(z)` coefficients, `z⁰ … z³` (`reference/math/atan_fit.py`).
 const P: [f32; 4] = [-0.333_329_38, 0.199_773_61, -0.138_744_49, 0.080_444_66];
 
-/// `atan(t) = k·π/4 + v` for `t ∈ [0, 1]`: returns `(k, v)`, `k ∈ {0, 1}`.
-#[inline]
-fn atan_unit(t: f32) -> (usize, f32) {
-    let (u, k) = if t > TAN_PI_8 {
-        ((t - 1.0) / (t + 1.0), 1)
-    } else {
-        (t, 0)
-    };
+/// `atan(t) = k·π/4 + v` for `t ∈ [0, 1]`: returns `(k, v)`, `k ∈ {0, 1}` (as a [`Real`]).
+#[inline(always)]
+fn atan_unit<R: Real>(t: R) -> (R, R) {
+    let c = R::splat;
+    let big = t.gt(c(TAN_PI_8));
+    let u = branch(big, || (t - c(1.0)) / (t + c(1.0)), || t);
     let z = u * u;
-    let p = ((P[3] * z + P[2]) * z + P[1]) * z + P[0];
-    (k, u + u * z * p)
+    let p = ((c(P[3]) * z + c(P[2])) * z + c(P[1])) * z + c(P[0]);
+    (R::select(big, c(1.0), c(0.0)), u + u * z * p)
 }
 
 /// The angle (radians, in `[0, π]`) between the non-zero vectors `a` and `b`:
@@ -55,33 +54,29 @@ pub fn angle_between(a: glam::Vec3, b: glam::Vec3) -> f32 {
     atan2(a.cross(b).length(), a.dot(b))
 }
 
-/// The angle of `(x, y)` in `[−π, π]`, as `libm::atan2f` (±0 and infinities included;
-/// NaN in, NaN out).
-#[inline]
-pub fn atan2(y: f32, x: f32) -> f32 {
-    if x.is_nan() || y.is_nan() {
-        return f32::NAN;
-    }
-    let (ax, ay) = (abs(x), abs(y));
-    let steep = ay > ax;
-    let (lo, hi) = if steep { (ax, ay) } else { (ay, ax) };
-    let t = if hi == 0.0 {
-        0.0
-    } else if lo == f32::INFINITY {
-        1.0
-    } else {
-        lo / hi
-    };
+/// The angle of `(x, y)` in `[−π, π]`, NaN if either is NaN (any [`Real`]).
+#[inline(always)]
+pub fn atan2<R: Real>(y: R, x: R) -> R {
+    let c = R::splat;
+    let (ax, ay) = (x.abs(), y.abs());
+    let steep = ay.gt(ax);
+    let lo = R::select(steep, ax, ay);
+    let hi = R::select(steep, ay, ax);
+    let t = R::select(
+        hi.eq(c(0.0)),
+        c(0.0),
+        R::select(lo.eq(c(f32::INFINITY)), c(1.0), lo / hi),
+    );
     let (k, v) = atan_unit(t);
-    // The angle is n·π/4 ± v: mirrored about π/4 when steep, about π/2 when x < 0.
-    let (n, v) = match (steep, x.is_sign_negative()) {
-        (false, false) => (k, v),
-        (true, false) => (2 - k, -v),
-        (true, true) => (2 + k, v),
-        (false, true) => (4 - k, -v),
-    };
-    let r = QUARTER_PI_HI[n] + (QUARTER_PI_LO[n] + v);
-    if y.is_sign_negative() { -r } else { r }
+    // The angle is n·π/4 ± v: mirrored about π/4 when steep, about π/2 when x < 0, so
+    // n = k, 2 − k, 2 + k, 4 − k and v flips sign where exactly one mirror applies.
+    let neg = x.sign_bit();
+    let flip = (steep & !neg) | (!steep & neg);
+    let n = R::select(steep, c(2.0), R::select(neg, c(4.0), c(0.0))) + R::select(flip, -k, k);
+    let v = R::select(flip, -v, v);
+    let r = R::gather(&QUARTER_PI_HI, n) + (R::gather(&QUARTER_PI_LO, n) + v);
+    let r = R::select(y.sign_bit(), -r, r);
+    R::select(x.is_nan() | y.is_nan(), c(f32::NAN), r)
 }
 
 /// Arctangent.
@@ -98,10 +93,11 @@ pub fn asin(x: f32) -> f32 {
 }
 
 /// Arccosine of `x` clamped to [-1, 1].
-#[inline]
-pub fn acos(x: f32) -> f32 {
-    let x = clamp(x, -1.0, 1.0);
-    atan2(sqrt0((1.0 - x) * (1.0 + x)), x)
+#[inline(always)]
+pub fn acos<R: Real>(x: R) -> R {
+    let one = R::splat(1.0);
+    let x = clamp(x, -one, one);
+    atan2(sqrt0((one - x) * (one + x)), x)
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! Complex helpers built on the scalar seam (rust-gpu has no `hypot`, so `num_complex`'s
 //! `norm`, `sqrt`, `exp`, … are not used in the kernel).
 
+use crate::lane::{Cx, Real};
 use num_complex::Complex32;
 
 /// The kernel's complex type.
@@ -29,19 +30,24 @@ pub fn cscale(z: C32, s: f32) -> C32 {
 /// |z| up to `f32::MAX / 2`.
 #[inline]
 pub fn csqrt(z: C32) -> C32 {
+    let r = csqrt_cx(Cx::new(z.re, z.im));
+    C32::new(r.re, r.im)
+}
+
+/// [`csqrt`] for any [`Real`] (the one formula; `0.5(r + |a|)` is `0.5(r + a)` for `a ≥ 0`
+/// and `0.5(r − a)` for `a < 0`).
+#[inline(always)]
+pub fn csqrt_cx<R: Real>(z: Cx<R>) -> Cx<R> {
+    let c = R::splat;
     let (a, b) = (z.re, z.im);
-    let m = super::max(super::abs(a), super::abs(b));
-    if m == 0.0 {
-        return C32::new(0.0, b);
-    }
-    // |z| computed with scaling to avoid overflow in a² + b².
+    let m = super::max(a.abs(), b.abs());
     let (sa, sb) = (a / m, b / m);
-    let r = m * super::sqrt(sa * sa + sb * sb);
-    if a >= 0.0 {
-        let t = super::sqrt(0.5 * (r + a));
-        C32::new(t, b / (2.0 * t))
-    } else {
-        let t = super::sqrt(0.5 * (r - a));
-        C32::new(super::abs(b) / (2.0 * t), if b < 0.0 { -t } else { t })
-    }
+    let r = m * (sa * sa + sb * sb).sqrt();
+    let t = (c(0.5) * (r + a.abs())).sqrt();
+    let two_t = c(2.0) * t;
+    let pos = a.ge(c(0.0));
+    let re = R::select(pos, t, b.abs() / two_t);
+    let im = R::select(pos, b / two_t, R::select(b.lt(c(0.0)), -t, t));
+    let zero = m.eq(c(0.0));
+    Cx::new(R::select(zero, c(0.0), re), R::select(zero, b, im))
 }

@@ -17,7 +17,7 @@ mod trig_pi;
 
 pub use atan::{acos, angle_between, asin, atan, atan2};
 pub use bessel::bessel_i0e;
-pub use complex::{C32, cis, cmul_i, cscale, csqrt};
+pub use complex::{C32, cis, cmul_i, cscale, csqrt, csqrt_cx};
 pub use expm1::{expm1, ln1p};
 pub use faddeeva::{faddeeva, faddeeva_lanes};
 pub use gamma::{gamma, gamma_inv, gamma_p, gamma_p_inv, gamma_q, gamma_q_inv, lgamma};
@@ -41,6 +41,8 @@ pub const FRAC_1_SQRT_PI: f32 = 0.564_189_583_547_756_3;
 pub mod portable;
 pub mod quadrature;
 
+use crate::lane::Real;
+
 /// e^x.
 #[inline]
 pub fn exp(x: f32) -> f32 {
@@ -53,6 +55,9 @@ pub fn exp(x: f32) -> f32 {
 /// Natural logarithm.
 #[inline]
 pub fn ln(x: f32) -> f32 {
+    #[cfg(feature = "portable-math")]
+    return portable::ln_branchless(x);
+    #[cfg(not(feature = "portable-math"))]
     libm::logf(x)
 }
 
@@ -63,9 +68,9 @@ pub fn sqrt(x: f32) -> f32 {
 }
 
 /// `sqrt(max(x, 0))`: the square root of a quantity that is non-negative up to rounding.
-#[inline]
-pub fn sqrt0(x: f32) -> f32 {
-    libm::sqrtf(if x > 0.0 { x } else { 0.0 })
+#[inline(always)]
+pub fn sqrt0<R: Real>(x: R) -> R {
+    R::select(x.gt(R::splat(0.0)), x, R::splat(0.0)).sqrt()
 }
 
 /// Sine.
@@ -138,27 +143,21 @@ pub fn ceil(x: f32) -> f32 {
 }
 
 /// `x` clamped to `[lo, hi]`; NaN maps to `lo`.
-#[inline]
-pub fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
-    if x > hi {
-        hi
-    } else if x >= lo {
-        x
-    } else {
-        lo
-    }
+#[inline(always)]
+pub fn clamp<R: Real>(x: R, lo: R, hi: R) -> R {
+    R::select(x.gt(hi), hi, R::select(x.ge(lo), x, lo))
 }
 
 /// `min(a, b)` that returns the other operand when one is NaN.
-#[inline]
-pub fn min(a: f32, b: f32) -> f32 {
-    if a < b || b.is_nan() { a } else { b }
+#[inline(always)]
+pub fn min<R: Real>(a: R, b: R) -> R {
+    R::select(a.lt(b) | b.is_nan(), a, b)
 }
 
 /// `max(a, b)` that returns the other operand when one is NaN.
-#[inline]
-pub fn max(a: f32, b: f32) -> f32 {
-    if a > b || b.is_nan() { a } else { b }
+#[inline(always)]
+pub fn max<R: Real>(a: R, b: R) -> R {
+    R::select(a.gt(b) | b.is_nan(), a, b)
 }
 
 /// +1 for `x >= 0`, −1 otherwise.

@@ -60,6 +60,17 @@ pub fn exp(x: f32) -> f32 {
     let kf = libm_free_floor(x * FRAC_1_LN2_HI + 0.5);
     let r = x - kf * LN2_HI;
     let u = -kf * LN2_LO;
+    let er = exp_reduced(r, u);
+    // 2^k in two factors so that k = 128 (x near the overflow edge) and k < -126
+    // (subnormal results) stay representable; NaN makes `k` meaningless but keeps `er` NaN.
+    let k = kf as i32;
+    let k1 = k / 2;
+    er * exp2i(k1) * exp2i(k - k1)
+}
+
+/// `e^r · e^u` for the reduced arguments of [`exp`]: `|r| ≤ ln2_hi/2`, `u = −k·ln2_lo`.
+#[inline(always)]
+fn exp_reduced(r: f32, u: f32) -> f32 {
     let lo = 1.0 + u * (1.0 + u * (0.5 + u * (1.0 / 6.0 + u * (1.0 / 24.0))));
     let r2 = r * r;
     let mut p = 1.987_569_150_0e-4_f32;
@@ -68,12 +79,74 @@ pub fn exp(x: f32) -> f32 {
     p = p * r + 4.166_579_589_4e-2;
     p = p * r + 1.666_666_545_9e-1;
     p = p * r + 5.000_000_120_1e-1;
-    let er = (p * r2 + r + 1.0) * lo;
-    // 2^k in two factors so that k = 128 (x near the overflow edge) and k < -126
-    // (subnormal results) stay representable; NaN makes `k` meaningless but keeps `er` NaN.
-    let k = kf as i32;
-    let k1 = k / 2;
-    er * exp2i(k1) * exp2i(k - k1)
+    (p * r2 + r + 1.0) * lo
+}
+
+/// 2²³: adding and subtracting it rounds an `x ∈ [0, 2²³)` to the nearest integer.
+const ROUND_MAGIC: f32 = 8_388_608.0;
+
+/// `floor(x)` without a branch or a float→int conversion (either keeps LLVM from
+/// vectorising a loop of it): exact for every `f32` (|x| ≥ 2²³ is already integral).
+#[inline(always)]
+pub fn floor_branchless(x: f32) -> f32 {
+    let ax = f32::from_bits(x.to_bits() & 0x7fff_ffff);
+    let n = (ax + ROUND_MAGIC) - ROUND_MAGIC;
+    let n = if x < 0.0 { -n } else { n };
+    let f = if n > x { n - 1.0 } else { n };
+    if ax < ROUND_MAGIC { f } else { x }
+}
+
+/// 1.5·2²³: `n + K_MAGIC` holds the integer `|n| < 2²²` in its low mantissa bits.
+const K_MAGIC: f32 = 12_582_912.0;
+
+/// [`exp`] with the same reduction, polynomial and result (bit for bit), written without
+/// branches or float→int conversions, for [`crate::lane::Lanes`] (a loop of it vectorises).
+#[inline(always)]
+pub fn exp_branchless(x: f32) -> f32 {
+    let xc = if x > EXP_OVERFLOW { EXP_OVERFLOW } else { x };
+    let xc = if xc < EXP_UNDERFLOW {
+        EXP_UNDERFLOW
+    } else {
+        xc
+    };
+    let kf = floor_branchless(xc * FRAC_1_LN2_HI + 0.5);
+    let r = xc - kf * LN2_HI;
+    let er = exp_reduced(r, -kf * LN2_LO);
+    // k from the mantissa of `kf + 1.5·2²³` (kf is an integer in [-150, 128]).
+    let k = ((kf + K_MAGIC).to_bits() as i32) - (K_MAGIC.to_bits() as i32);
+    let k1 = k >> 1;
+    let v = er * exp2i(k1) * exp2i(k - k1);
+    let v = if x > EXP_OVERFLOW { f32::INFINITY } else { v };
+    let v = if x < EXP_UNDERFLOW { 0.0 } else { v };
+    if x.is_nan() { x } else { v }
+}
+
+/// ln 2 split for [`ln_branchless`]: `e·LN2_HI` is exact for |e| < 2⁹.
+const LOG_LN2_HI: f32 = 0.693_359_375;
+const LOG_LN2_LO: f32 = -2.121_944_400_546_905_8e-4;
+
+/// `ln x` within 2 ULP, without branches or float→int conversions (for
+/// [`crate::lane::Lanes`]): `x = 2^e·m` with `m ∈ [√½, √2)` from the bits, and
+/// `ln m = 2 atanh((m − 1)/(m + 1))` by the same series as [`super::ln1p`]
+/// ([`super::expm1::ln_ratio_series`]). Subnormals are scaled by 2²³ first; `ln 0 = −∞`,
+/// `ln x = NaN` below 0, `ln ∞ = ∞`.
+#[inline(always)]
+pub fn ln_branchless(x: f32) -> f32 {
+    let sub = x < f32::MIN_POSITIVE;
+    let xs = if sub { x * 8_388_608.0 } else { x };
+    let bits = xs.to_bits();
+    // x = 2^e·m with m ∈ [√½, √2): adding 1.0's bits minus √½'s carries into the
+    // exponent exactly when the mantissa is at least √½'s.
+    let b = bits.wrapping_add(0x3f80_0000 - 0x3f35_04f3);
+    let e = ((b >> 23) as i32) - 127 - if sub { 23 } else { 0 };
+    let m = f32::from_bits((b & 0x007f_ffff).wrapping_add(0x3f35_04f3));
+    let f = m - 1.0;
+    let s = f / (2.0 + f);
+    let ef = e as f32;
+    let v = ef * LOG_LN2_HI + (super::expm1::ln_ratio_series(s) + ef * LOG_LN2_LO);
+    let v = if x == 0.0 { f32::NEG_INFINITY } else { v };
+    let v = if x == f32::INFINITY { x } else { v };
+    if x < 0.0 || x.is_nan() { f32::NAN } else { v }
 }
 
 /// Sine, about 1 ULP for |x| ≤ 8192.
@@ -163,6 +236,73 @@ mod tests {
             x += 0.013_7;
         }
         assert!(worst <= 2, "worst {worst} ULP");
+    }
+
+    #[test]
+    fn exp_branchless_is_exp_bit_for_bit() {
+        let mut x = -110.0_f32;
+        while x < 90.0 {
+            assert_eq!(exp_branchless(x).to_bits(), exp(x).to_bits(), "x = {x}");
+            x += 0.003_1;
+        }
+        for x in [
+            0.0,
+            -0.0,
+            88.72,
+            88.73,
+            -103.9,
+            -104.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ] {
+            assert_eq!(exp_branchless(x).to_bits(), exp(x).to_bits(), "x = {x}");
+        }
+        assert!(exp_branchless(f32::NAN).is_nan());
+    }
+
+    #[test]
+    fn floor_branchless_is_floor() {
+        let mut x = -3.0e7_f32;
+        while x < 3.0e7 {
+            for y in [x, x * 1.0e-6, x * 1.0e-3 + 0.5] {
+                assert_eq!(floor_branchless(y), libm::floorf(y), "y = {y}");
+            }
+            x += 12_345.678;
+        }
+        for y in [
+            0.0,
+            -0.5,
+            0.5,
+            -1.0,
+            4_194_303.5,
+            -4_194_303.5,
+            1.0e30,
+            -1.0e30,
+        ] {
+            assert_eq!(floor_branchless(y), libm::floorf(y), "y = {y}");
+        }
+    }
+
+    #[test]
+    fn ln_branchless_is_within_2_ulp_of_f64_ln_from_subnormals_to_max() {
+        let mut worst = 0.0_f64;
+        // Every 97th f32 bit pattern of the positive finite range, subnormals included.
+        let mut bits = 1_u32;
+        while bits < 0x7f80_0000 {
+            let x = f32::from_bits(bits);
+            let want = libm::log(f64::from(x));
+            let got = f64::from(ln_branchless(x));
+            let w = want as f32;
+            let ulp = f64::from(f32::from_bits(w.abs().to_bits() + 1) - w.abs());
+            worst = worst.max((got - want).abs() / ulp);
+            bits += 97;
+        }
+        assert!(worst <= 2.0, "worst {worst} ULP");
+        assert_eq!(ln_branchless(1.0), 0.0);
+        assert_eq!(ln_branchless(0.0), f32::NEG_INFINITY);
+        assert_eq!(ln_branchless(-0.0), f32::NEG_INFINITY);
+        assert_eq!(ln_branchless(f32::INFINITY), f32::INFINITY);
+        assert!(ln_branchless(-1.0).is_nan() && ln_branchless(f32::NAN).is_nan());
     }
 
     #[test]

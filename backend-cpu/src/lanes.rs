@@ -1,0 +1,97 @@
+//! Batches of [`LANES`] queries through a kernel function generic over
+//! [`scratchwave_kernel::lane::Real`]: the SIMD backend's path for the formulas written in
+//! lanes (GHS today).
+//!
+//! One binary, run-time dispatch: each chunk of queries runs through the same
+//! `Lanes<8>` instantiation, inside an `#[target_feature(enable = "avx2,fma")]` function
+//! when the CPU has AVX2 and FMA (8 f32 per instruction), else in the baseline build (SSE2
+//! on x86-64, NEON on aarch64: the same eight lanes as two 4-wide halves). The lane
+//! functions are `#[inline(always)]` in the kernel, so their code is generated inside
+//! whichever context calls them. A short last chunk is padded with copies of its first
+//! query, so every query gets the same lane arithmetic wherever it sits in the input.
+
+use crate::parallel::{Backend, CHUNK};
+use rayon::prelude::*;
+
+/// Lanes per batch: 8 f32 fill one AVX2 register.
+pub const LANES: usize = 8;
+
+/// A kernel function over one query per lane.
+pub trait LaneFn: Sync {
+    /// One query.
+    type In: Sync + Copy;
+    /// One result.
+    type Out: Send + Copy + Default;
+    /// The results of [`LANES`] queries at once.
+    fn lanes(&self, q: &[Self::In; LANES]) -> [Self::Out; LANES];
+    /// The result of one query (the same formula at one lane: the scalar backend).
+    fn one(&self, q: &Self::In) -> Self::Out;
+}
+
+/// `out[i] = f(inputs[i])`: one query at a time on [`Backend::Scalar`], in batches of
+/// [`LANES`] on the SIMD backends (all rayon threads for [`Backend::Simd`]).
+pub fn map_lanes<F: LaneFn>(backend: Backend, inputs: &[F::In], f: &F) -> Vec<F::Out> {
+    let mut out = vec![F::Out::default(); inputs.len()];
+    match backend {
+        Backend::Scalar => {
+            for (o, q) in out.iter_mut().zip(inputs) {
+                *o = f.one(q);
+            }
+        }
+        Backend::SimdSingleThread => run_chunk(inputs, &mut out, f),
+        Backend::Simd => {
+            out.par_chunks_mut(CHUNK)
+                .zip(inputs.par_chunks(CHUNK))
+                .for_each(|(o, i)| run_chunk(i, o, f));
+        }
+    }
+    out
+}
+
+/// Whether [`map_lanes`] runs its batches with AVX2 + FMA on this CPU.
+pub fn avx2_fma() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+fn run_chunk<F: LaneFn>(inputs: &[F::In], out: &mut [F::Out], f: &F) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if avx2_fma() {
+            // SAFETY: the features were just detected on this CPU.
+            unsafe { run_chunk_avx2(inputs, out, f) };
+            return;
+        }
+    }
+    run_batches(inputs, out, f);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn run_chunk_avx2<F: LaneFn>(inputs: &[F::In], out: &mut [F::Out], f: &F) {
+    run_batches(inputs, out, f);
+}
+
+#[inline(always)]
+fn run_batches<F: LaneFn>(inputs: &[F::In], out: &mut [F::Out], f: &F) {
+    let mut qs = inputs.chunks_exact(LANES);
+    let mut os = out.chunks_exact_mut(LANES);
+    for (o, q) in (&mut os).zip(&mut qs) {
+        if let Ok(q) = <&[F::In; LANES]>::try_from(q) {
+            o.copy_from_slice(&f.lanes(q));
+        }
+    }
+    let rest = qs.remainder();
+    if let Some(first) = rest.first() {
+        let mut q = [*first; LANES];
+        q[..rest.len()].copy_from_slice(rest);
+        let r = f.lanes(&q);
+        os.into_remainder().copy_from_slice(&r[..rest.len()]);
+    }
+}
