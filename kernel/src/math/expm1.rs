@@ -34,7 +34,7 @@ pub fn expm1<R: Real>(x: R) -> R {
 
 /// `ln(1 + x)` for `x > −1`, accurate to a few ulp also for `|x| ≪ 1`: for `|x| < 1/2`
 /// `2 atanh(s)` with `s = x/(2 + x)` (`|s| ≤ 1/3`; the series to `s¹⁵`, truncation
-/// ≤ 1.4e-9 relative, [`ln_ratio_series`]), else `ln(1 + x)` (away from 1, where `Log` is
+/// ≤ 1.4e-9 relative, `ln_ratio_series`), else `ln(1 + x)` (away from 1, where `Log` is
 /// relatively accurate). Any [`Real`].
 #[inline(always)]
 pub fn ln1p<R: Real>(x: R) -> R {

@@ -128,7 +128,7 @@ const LOG_LN2_LO: f32 = -2.121_944_400_546_905_8e-4;
 /// `ln x` within 2 ULP, without branches or float→int conversions (for
 /// [`crate::lane::Lanes`]): `x = 2^e·m` with `m ∈ [√½, √2)` from the bits, and
 /// `ln m = 2 atanh((m − 1)/(m + 1))` by the same series as [`super::ln1p`]
-/// ([`super::expm1::ln_ratio_series`]). Subnormals are scaled by 2²³ first; `ln 0 = −∞`,
+/// (`expm1::ln_ratio_series`). Subnormals are scaled by 2²³ first; `ln 0 = −∞`,
 /// `ln x = NaN` below 0, `ln ∞ = ∞`.
 #[inline(always)]
 pub fn ln_branchless(x: f32) -> f32 {
