@@ -180,12 +180,12 @@ pub fn evaluate_ghs_lanes<R: Real>(
     lambda_nm: R,
 ) -> R {
     let zero = R::splat(0.0);
-    branch(
+    branch!(
         wi.z.gt(zero) & wo.z.gt(zero) & lambda_nm.gt(zero),
-        || {
+        {
             let r = ghs::evaluate_lanes(p, g1_table, wi, wo, um_from_nm(lambda_nm));
             R::select(r.is_finite() & r.gt(zero), r, zero)
         },
-        || zero,
+        zero,
     )
 }

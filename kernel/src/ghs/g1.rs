@@ -91,10 +91,10 @@ pub fn g1_from_v_lanes<R: Real>(table: &G1Table, v: R, ln_p: f32) -> R {
     let lnv = v.ln();
     let flat = !v.gt(c(0.0)) | lnv.le(c(G1_LNV_MIN));
     let tail = lnv.ge(c(G1_LNV_MAX));
-    branch(
+    branch!(
         flat | tail,
-        || R::select(flat, c(1.0), c(1.0) / (v + c(0.5))),
-        || {
+        R::select(flat, c(1.0), c(1.0) / (v + c(0.5))),
+        {
             let lnp = math::clamp(ln_p, G1_LNP_MIN, G1_LNP_MAX);
             let (iv, tv) = cell(lnv, G1_LNV_MIN, G1_LNV_MAX, G1_NV);
             let (ip, tp) = cell(lnp, G1_LNP_MIN, G1_LNP_MAX, G1_NP);

@@ -261,9 +261,9 @@ impl<'t, R: Real> Ghs<'t, R> {
     #[inline(always)]
     pub fn reflection_lanes(&self, wi: V3<R>, wo: V3<R>) -> R {
         let (h, cos_d, ok) = half_vector_lanes(wi, wo);
-        branch(
+        branch!(
             ok,
-            || {
+            {
                 let ci = math::max(wi.z, R::splat(limits::COS_MIN));
                 let co = math::max(wo.z, R::splat(limits::COS_MIN));
                 let g = self.g1_lanes(ci) * self.g1_lanes(co);
@@ -273,7 +273,7 @@ impl<'t, R: Real> Ghs<'t, R> {
                     * g
                     / (R::splat(4.0) * ci * co)
             },
-            || R::splat(0.0),
+            R::splat(0.0),
         )
     }
 
@@ -282,9 +282,9 @@ impl<'t, R: Real> Ghs<'t, R> {
     pub fn diffraction_lanes(&self, wi: V3<R>, wo: V3<R>, sigma_rel_sq: R) -> R {
         let zero = R::splat(0.0);
         let one_minus_a = energy::diffracted_fraction(self.sigma_over_lambda, wi.z, wo.z);
-        branch(
+        branch!(
             one_minus_a.gt(zero) & sigma_rel_sq.gt(zero),
-            || {
+            {
                 // r = |i_p + o_p| (the lobe's offset from the mirror direction), with the
                 // length correction of `direction_sum` where the two nearly cancel
                 let d = direction_sum_lanes(wi, wo);
@@ -304,7 +304,7 @@ impl<'t, R: Real> Ghs<'t, R> {
                 };
                 one_minus_a * s * g * colour
             },
-            || zero,
+            zero,
         )
     }
 
@@ -336,15 +336,15 @@ impl<'t, R: Real> Ghs<'t, R> {
     #[inline(always)]
     pub fn eval_with_sigma_rel_lanes(&self, wi: V3<R>, wo: V3<R>, sigma_rel_sq: R) -> R {
         let zero = R::splat(0.0);
-        branch(
+        branch!(
             wi.z.gt(zero) & wo.z.gt(zero),
-            || {
+            {
                 let v = self.reflection_lanes(wi, wo)
                     + self.diffraction_lanes(wi, wo, sigma_rel_sq)
                     + self.layer_lobe_lanes(wi, wo);
                 R::select(v.is_finite(), v, zero)
             },
-            || zero,
+            zero,
         )
     }
 

@@ -35,10 +35,10 @@ impl GenBeckmann {
     #[inline(always)]
     pub fn p22<R: Real>(&self, tan2: R) -> R {
         let x = tan2 / R::splat(self.beta * self.beta);
-        let y = branch(
+        let y = branch!(
             x.gt(R::splat(0.0)),
-            || (R::splat(self.p) * x.ln()).exp(),
-            || R::splat(0.0),
+            (R::splat(self.p) * x.ln()).exp(),
+            R::splat(0.0),
         );
         (R::splat(self.ln_norm) - y).exp()
     }

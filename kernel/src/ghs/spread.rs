@@ -84,31 +84,23 @@ impl<R: Real> KCorrelation<R> {
         let l0 = self.log_arg(c(1.0) - s);
         let l1 = self.log_arg(c(1.0) + s);
         let w0 = -math::expm1(-c(h) * l0);
-        branch(
-            s.lt(c(1.0e-6)),
-            || w0,
-            || {
-                let v0 = (-c(h) * l0).exp();
-                let frac = -math::expm1(-c(h) * (l1 - l0)); // Δ / v0
-                let delta = v0 * frac;
-                branch(
-                    !delta.gt(c(0.0)),
-                    || w0,
-                    || {
-                        let mut sum = c(0.0);
-                        let mut k = 0;
-                        while k < GL_N {
-                            let l = l0 - math::ln1p(-frac * c(GL_XI[k])) / c(h);
-                            let r = self.radius_from_log_arg(l);
-                            sum = sum + c(GL_WS[k]) * phi_max(r, s);
-                            k += 1;
-                        }
-                        sum = sum * c(1.0 / math::PI);
-                        math::clamp(w0 + delta * sum, c(0.0), c(1.0))
-                    },
-                )
-            },
-        )
+        branch!(s.lt(c(1.0e-6)), w0, {
+            let v0 = (-c(h) * l0).exp();
+            let frac = -math::expm1(-c(h) * (l1 - l0)); // Δ / v0
+            let delta = v0 * frac;
+            branch!(!delta.gt(c(0.0)), w0, {
+                let mut sum = c(0.0);
+                let mut k = 0;
+                while k < GL_N {
+                    let l = l0 - math::ln1p(-frac * c(GL_XI[k])) / c(h);
+                    let r = self.radius_from_log_arg(l);
+                    sum = sum + c(GL_WS[k]) * phi_max(r, s);
+                    k += 1;
+                }
+                sum = sum * c(1.0 / math::PI);
+                math::clamp(w0 + delta * sum, c(0.0), c(1.0))
+            })
+        })
     }
 }
 
@@ -119,15 +111,15 @@ impl<R: Real> KCorrelation<R> {
 pub fn phi_max<R: Real>(r: R, s: R) -> R {
     let c = R::splat;
     let rs = r * s;
-    branch(
+    branch!(
         !rs.gt(c(1.0e-12)),
-        || R::select(r.lt(c(1.0)), c(math::PI), c(0.0)),
-        || {
+        R::select(r.lt(c(1.0)), c(math::PI), c(0.0)),
+        {
             let arg = (r * r + s * s - c(1.0)) / (c(2.0) * rs);
-            branch(
+            branch!(
                 arg.gt(c(-1.0)) & arg.lt(c(1.0)),
-                || math::acos(arg),
-                || R::select(arg.le(c(-1.0)), c(math::PI), c(0.0)),
+                math::acos(arg),
+                R::select(arg.le(c(-1.0)), c(math::PI), c(0.0)),
             )
         },
     )

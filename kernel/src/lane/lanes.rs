@@ -16,9 +16,10 @@ use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 #[repr(C)]
 pub struct Lanes<const N: usize>(pub [f32; N]);
 
-/// `N` per-lane conditions.
+/// `N` per-lane conditions, each all ones (true) or all zeros (false): the form a vector
+/// compare produces, so masks stay in vector registers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LaneMask<const N: usize>(pub [bool; N]);
+pub struct LaneMask<const N: usize>(pub [u32; N]);
 
 impl<const N: usize> Lanes<N> {
     /// `f` applied to each lane.
@@ -46,10 +47,10 @@ impl<const N: usize> Lanes<N> {
 
     #[inline(always)]
     fn test(self, b: Self, f: impl Fn(f32, f32) -> bool) -> LaneMask<N> {
-        let mut o = [false; N];
+        let mut o = [0; N];
         let mut i = 0;
         while i < N {
-            o[i] = f(self.0[i], b.0[i]);
+            o[i] = if f(self.0[i], b.0[i]) { u32::MAX } else { 0 };
             i += 1;
         }
         LaneMask(o)
@@ -71,23 +72,23 @@ impl<const N: usize> super::V3<Lanes<N>> {
 impl<const N: usize> Mask for LaneMask<N> {
     #[inline(always)]
     fn all(self) -> bool {
-        let mut a = true;
+        let mut a = u32::MAX;
         let mut i = 0;
         while i < N {
             a &= self.0[i];
             i += 1;
         }
-        a
+        a != 0
     }
     #[inline(always)]
     fn any(self) -> bool {
-        let mut a = false;
+        let mut a = 0;
         let mut i = 0;
         while i < N {
             a |= self.0[i];
             i += 1;
         }
-        a
+        a != 0
     }
 }
 
@@ -97,7 +98,7 @@ macro_rules! mask_op {
             type Output = Self;
             #[inline(always)]
             fn $f(self, b: Self) -> Self {
-                let mut o = [false; N];
+                let mut o = [0; N];
                 let mut i = 0;
                 while i < N {
                     o[i] = self.0[i] $op b.0[i];
@@ -149,6 +150,21 @@ impl<const N: usize> Neg for Lanes<N> {
     }
 }
 
+/// Four correctly rounded square roots: `sqrtps` on x86-64 (SSE is part of its baseline),
+/// else one `sqrt` per lane.
+#[inline(always)]
+fn sqrt4(x: [f32; 4]) -> [f32; 4] {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SAFETY: `sqrtps` needs SSE, which every x86-64 CPU has (the target's baseline).
+        bytemuck::cast(unsafe { core::arch::x86_64::_mm_sqrt_ps(bytemuck::cast(x)) })
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        x.map(crate::math::sqrt)
+    }
+}
+
 impl<const N: usize> Real for Lanes<N> {
     type Mask = LaneMask<N>;
     #[inline(always)]
@@ -193,7 +209,8 @@ impl<const N: usize> Real for Lanes<N> {
         let mut o = [0.0; N];
         let mut i = 0;
         while i < N {
-            o[i] = if m.0[i] { a.0[i] } else { b.0[i] };
+            let m = m.0[i];
+            o[i] = f32::from_bits((a.0[i].to_bits() & m) | (b.0[i].to_bits() & !m));
             i += 1;
         }
         Lanes(o)
@@ -208,7 +225,20 @@ impl<const N: usize> Real for Lanes<N> {
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
-        self.map(crate::math::sqrt)
+        // libm's `sqrtf` is the scalar `sqrtss` instruction, which LLVM does not vectorise;
+        // `sqrtps` is the same correctly rounded square root, four lanes at a time.
+        let mut o = self.0;
+        let mut i = 0;
+        while i + 4 <= N {
+            let q = sqrt4([o[i], o[i + 1], o[i + 2], o[i + 3]]);
+            o[i..i + 4].copy_from_slice(&q);
+            i += 4;
+        }
+        while i < N {
+            o[i] = crate::math::sqrt(o[i]);
+            i += 1;
+        }
+        Lanes(o)
     }
     #[inline(always)]
     fn exp(self) -> Self {
@@ -218,8 +248,26 @@ impl<const N: usize> Real for Lanes<N> {
     fn ln(self) -> Self {
         self.map(portable::ln_branchless)
     }
+    /// Written so that LLVM can vectorise it (`vpgatherdd` with AVX2): the index is
+    /// clamped into the table and converted by the 2²³ rounding trick (exact for the
+    /// integer-valued indices of a table below 2²³ entries) instead of a saturating
+    /// float→int conversion, and the load cannot go out of bounds.
     #[inline(always)]
     fn gather(table: &[f32], index: Self) -> Self {
-        index.map(|i| f32::gather(table, i))
+        let Some(last) = table.len().checked_sub(1) else {
+            return Self::splat(0.0);
+        };
+        let mut o = [0.0; N];
+        let mut i = 0;
+        while i < N {
+            let x = index.0[i];
+            let inside = x >= 0.0 && x <= last as f32;
+            let c = if inside { x } else { 0.0 };
+            let k = ((c + 8_388_608.0).to_bits() - 0x4b00_0000) as usize;
+            let v = table[if k < last { k } else { last }];
+            o[i] = if inside { v } else { 0.0 };
+            i += 1;
+        }
+        Lanes(o)
     }
 }

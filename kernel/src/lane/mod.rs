@@ -4,9 +4,9 @@
 //!
 //! A formula generic over [`Real`] is compiled once per lane type. Where lanes may take
 //! different sides of a condition the formula computes a [`Real::Mask`] and either
-//! [`Real::select`]s between two values or runs [`branch`], which evaluates only the side
+//! [`Real::select`]s between two values or runs `branch!`, which evaluates only the side
 //! every lane takes and both sides (then selects) only when the lanes disagree. For `f32`
-//! the mask is a `bool` and [`branch`] is an ordinary `if`, so the scalar code (and the
+//! the mask is a `bool` and `branch!` is an ordinary `if`, so the scalar code (and the
 //! SPIR-V module) does the same work as before it was made generic.
 //!
 //! ARCHITECTURE.md *Lanes* explains the choice of a small own type over `core::arch`
@@ -79,15 +79,28 @@ pub trait Real:
     fn gather(table: &[f32], index: Self) -> Self;
 }
 
-/// `then()` in the lanes where `m` holds and `other()` elsewhere, evaluating each side only
-/// if some lane takes it (for `f32`: `if m { then() } else { other() }`).
-#[inline(always)]
-pub fn branch<R: Real>(m: R::Mask, then: impl FnOnce() -> R, other: impl FnOnce() -> R) -> R {
-    if m.all() {
-        then()
-    } else if !m.any() {
-        other()
-    } else {
-        R::select(m, then(), other())
-    }
+/// `branch!(m, then, other)`: `then` in the lanes where the mask `m` holds and `other`
+/// elsewhere, evaluating each expression only if some lane takes it (for `f32`:
+/// `if m { then } else { other }`).
+///
+/// A macro rather than a function of two closures: a closure that LLVM does not inline is
+/// compiled for the baseline instruction set, outside the caller's `#[target_feature]`
+/// context (measured: the GHS lanes ran at SSE width). Each expression appears once in the
+/// expansion, so nested branches do not multiply the code.
+macro_rules! branch {
+    ($m:expr, $then:expr, $other:expr $(,)?) => {{
+        let m = $m;
+        let t = if $crate::lane::Mask::any(m) {
+            $then
+        } else {
+            $crate::lane::Real::splat(0.0)
+        };
+        let o = if $crate::lane::Mask::all(m) {
+            $crate::lane::Real::splat(0.0)
+        } else {
+            $other
+        };
+        $crate::lane::Real::select(m, t, o)
+    }};
 }
+pub(crate) use branch;

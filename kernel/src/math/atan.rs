@@ -41,7 +41,7 @@ const P: [f32; 4] = [-0.333_329_38, 0.199_773_61, -0.138_744_49, 0.080_444_66];
 fn atan_unit<R: Real>(t: R) -> (R, R) {
     let c = R::splat;
     let big = t.gt(c(TAN_PI_8));
-    let u = branch(big, || (t - c(1.0)) / (t + c(1.0)), || t);
+    let u = branch!(big, (t - c(1.0)) / (t + c(1.0)), t);
     let z = u * u;
     let p = ((c(P[3]) * z + c(P[2])) * z + c(P[1])) * z + c(P[0]);
     (R::select(big, c(1.0), c(0.0)), u + u * z * p)

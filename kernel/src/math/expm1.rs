@@ -15,21 +15,17 @@ use crate::lane::{Real, branch};
 #[inline(always)]
 pub fn expm1<R: Real>(x: R) -> R {
     let one = R::splat(1.0);
-    branch(
-        x.abs().lt(R::splat(1.0e-5)),
-        || x + R::splat(0.5) * x * x,
-        || {
-            let u = x.exp();
-            let um1 = u - one;
-            // `u − 1` is exact for u in [1/2, 2]: there `ln u = ln1p(u − 1)` without `Log`
-            // near 1.
-            let ln_u = branch(um1.abs().lt(R::splat(0.5)), || ln1p(um1), || u.ln());
-            let v = um1 * x / ln_u;
-            let v = R::select(u.eq(one), x, v);
-            let v = R::select(um1.eq(-one), -one, v);
-            R::select(x.gt(R::splat(80.0)), u, v)
-        },
-    )
+    branch!(x.abs().lt(R::splat(1.0e-5)), x + R::splat(0.5) * x * x, {
+        let u = x.exp();
+        let um1 = u - one;
+        // `u − 1` is exact for u in [1/2, 2]: there `ln u = ln1p(u − 1)` without `Log`
+        // near 1.
+        let ln_u = branch!(um1.abs().lt(R::splat(0.5)), ln1p(um1), u.ln());
+        let v = um1 * x / ln_u;
+        let v = R::select(u.eq(one), x, v);
+        let v = R::select(um1.eq(-one), -one, v);
+        R::select(x.gt(R::splat(80.0)), u, v)
+    })
 }
 
 /// `ln(1 + x)` for `x > −1`, accurate to a few ulp also for `|x| ≪ 1`: for `|x| < 1/2`
@@ -38,11 +34,11 @@ pub fn expm1<R: Real>(x: R) -> R {
 /// relatively accurate). Any [`Real`].
 #[inline(always)]
 pub fn ln1p<R: Real>(x: R) -> R {
-    branch(
+    // Beyond 1e30 `1 + x` rounds to `x` anyway; `ln x` avoids its overflow at `f32::MAX`.
+    branch!(
         x.abs().lt(R::splat(0.5)),
-        || ln_ratio_series(x / (R::splat(2.0) + x)),
-        // Beyond 1e30, `1 + x` rounds to `x` anyway; `ln x` avoids its overflow at `f32::MAX`.
-        || R::select(x.gt(R::splat(1.0e30)), x, R::splat(1.0) + x).ln(),
+        ln_ratio_series(x / (R::splat(2.0) + x)),
+        R::select(x.gt(R::splat(1.0e30)), x, R::splat(1.0) + x).ln(),
     )
 }
 
