@@ -17,9 +17,10 @@ mod common;
 #[path = "../../kernel/tests/sweep_common/mod.rs"]
 mod sweep_common;
 
-use scratchwave_kernel::glam::Vec3;
 use scratchwave_spirv::Gpu;
-use scratchwave_spirv_shader::lobe_probe::{LobeFunction, LobeQuery, LobeRecord, evaluate};
+use scratchwave_spirv_shader::lobe_probe::{
+    LobeFunction, LobeQuery, LobeRecord, decode_direction, evaluate,
+};
 use sweep_common::Table;
 use sweep_common::sampling::{
     DISK_LOBE_MIN, LOBE1_MIN, VMF_RING_MIN, check_disk_lobe, check_lobe1, check_vmf_ring,
@@ -40,11 +41,6 @@ fn run(gpu: &Gpu, family: &str, queries: &[LobeQuery]) -> Vec<[f32; 4]> {
         queries.len()
     );
     out
-}
-
-/// A sampled direction (`None` when the last lane is 0).
-fn direction(r: [f32; 4]) -> Option<Vec3> {
-    (r[3] != 0.0).then(|| Vec3::new(r[0], r[1], r[2]))
 }
 
 #[test]
@@ -110,7 +106,9 @@ fn disk_lobes_on_spirv_are_within_the_sweep_bound() {
         });
     }
     let out = run(&gpu, "disk_lobe", &queries);
-    let bad = check_disk_lobe(&table, |i, _| (out[2 * i][0], direction(out[2 * i + 1])));
+    let bad = check_disk_lobe(&table, |i, _| {
+        (out[2 * i][0], decode_direction(out[2 * i + 1]))
+    });
     assert!(bad.is_empty(), "over the bound:\n{}", bad.join("\n"));
 }
 
@@ -139,6 +137,8 @@ fn vmf_ring_on_spirv_is_within_the_sweep_bound() {
         });
     }
     let out = run(&gpu, "vmf_ring", &queries);
-    let bad = check_vmf_ring(&table, |i, _| (out[2 * i][0], direction(out[2 * i + 1])));
+    let bad = check_vmf_ring(&table, |i, _| {
+        (out[2 * i][0], decode_direction(out[2 * i + 1]))
+    });
     assert!(bad.is_empty(), "over the bound:\n{}", bad.join("\n"));
 }

@@ -131,9 +131,9 @@ pub fn evaluate(q: &LobeQuery) -> [f32; 4] {
             None => [0.0; 4],
         },
         LobeFunction::DiskPdf => value(disk.pdf(wo, wi)),
-        LobeFunction::DiskSample => direction(disk.sample(wo, Vec2::new(a2, a3))),
+        LobeFunction::DiskSample => encode_direction(disk.sample(wo, Vec2::new(a2, a3))),
         LobeFunction::VmfPdf => value(vmf_ring_pdf(Vec2::new(a0, a1), a2, wo, wi)),
-        LobeFunction::VmfSample => direction(vmf_ring_sample(
+        LobeFunction::VmfSample => encode_direction(vmf_ring_sample(
             Vec2::new(a0, a1),
             a2,
             wo,
@@ -149,11 +149,23 @@ fn value(v: f32) -> [f32; 4] {
     [v, 0.0, 0.0, 1.0]
 }
 
-/// A sampled direction, or zeros for `None`.
+/// A sampled direction as a result record: `[x, y, z, 1]`, or zeros for `None`
+/// ([`decode_direction`] reads it back).
 #[inline]
-fn direction(d: Option<Vec3>) -> [f32; 4] {
+fn encode_direction(d: Option<Vec3>) -> [f32; 4] {
     match d {
         Some(d) => [d.x, d.y, d.z, 1.0],
         None => [0.0; 4],
+    }
+}
+
+/// The sampled direction of a result record written by the sampling functions (`None`
+/// when its last lane is 0).
+#[inline]
+pub fn decode_direction(r: [f32; 4]) -> Option<Vec3> {
+    if r[3] != 0.0 {
+        Some(Vec3::new(r[0], r[1], r[2]))
+    } else {
+        None
     }
 }

@@ -270,4 +270,8 @@ impl<const N: usize> Real for Lanes<N> {
         }
         Lanes(o)
     }
+    #[inline(always)]
+    fn gather_array<const K: usize>(table: &[f32; K], index: Self) -> Self {
+        Self::gather(table, index)
+    }
 }

@@ -77,6 +77,9 @@ pub trait Real:
     fn ln(self) -> Self;
     /// `table[i]` per lane for the integer-valued `index`, 0 where it is outside the table.
     fn gather(table: &[f32], index: Self) -> Self;
+    /// [`Real::gather`] from a fixed-size array (rust-gpu cannot unsize a constant array to
+    /// a slice).
+    fn gather_array<const K: usize>(table: &[f32; K], index: Self) -> Self;
 }
 
 /// `branch!(m, then, other)`: `then` in the lanes where the mask `m` holds and `other`

@@ -78,6 +78,14 @@ impl Real for f32 {
         math::ln(self)
     }
     #[inline(always)]
+    fn gather_array<const K: usize>(table: &[f32; K], index: f32) -> f32 {
+        if index >= 0.0 && index < K as f32 {
+            table[index as usize]
+        } else {
+            0.0
+        }
+    }
+    #[inline(always)]
     fn gather(table: &[f32], index: f32) -> f32 {
         if index >= 0.0 && index < table.len() as f32 {
             table[index as usize]

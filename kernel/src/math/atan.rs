@@ -74,7 +74,7 @@ pub fn atan2<R: Real>(y: R, x: R) -> R {
     let flip = (steep & !neg) | (!steep & neg);
     let n = R::select(steep, c(2.0), R::select(neg, c(4.0), c(0.0))) + R::select(flip, -k, k);
     let v = R::select(flip, -v, v);
-    let r = R::gather(&QUARTER_PI_HI, n) + (R::gather(&QUARTER_PI_LO, n) + v);
+    let r = R::gather_array(&QUARTER_PI_HI, n) + (R::gather_array(&QUARTER_PI_LO, n) + v);
     let r = R::select(y.sign_bit(), -r, r);
     R::select(x.is_nan() | y.is_nan(), c(f32::NAN), r)
 }
