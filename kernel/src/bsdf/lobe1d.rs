@@ -177,19 +177,61 @@ impl Lobe1 {
         }
     }
 
-    /// Inverse of [`Lobe1::cdf_low`] for `p ∈ (0, ½]`.
+    /// `½ − F(−|z|)`, the standardised component's mass between its centre and `z`, to
+    /// its own digits where it is small; `f_small` is [`Lobe1::cdf_low`]`(−|z|)`, whose
+    /// difference from ½ serves where it cannot cancel. Near the centre (`|z| < 1`, and
+    /// always for the Cauchy) the closed forms without ½: the logistic's
+    /// `−½ (e^{−|z|} − 1)/(e^{−|z|} + 1)` (with `expm1`), the Cauchy's `atan(|z|)/π`, the
+    /// Gaussian's `½ erf(|z|/√2)` (for `|z|/√2 < ½`, where [`math::erf`] is its Taylor
+    /// series).
     #[inline]
-    fn inv_low(&self, p: f32) -> f32 {
+    fn centre_mass(&self, z: f32, f_small: f32) -> f32 {
+        let az = math::abs(z);
         match self.kind {
-            Lobe1Kind::Logistic => math::ln(p / (1.0 - p)),
+            Lobe1Kind::Logistic => {
+                if az < 1.0 {
+                    let e = math::expm1(-az);
+                    -0.5 * e / (2.0 + e)
+                } else {
+                    0.5 - f_small
+                }
+            }
+            Lobe1Kind::Cauchy => math::atan(az) * (1.0 / math::PI),
+            Lobe1Kind::Gaussian => {
+                let x = az * core::f32::consts::FRAC_1_SQRT_2;
+                if x < 0.5 {
+                    0.5 * math::erf(x)
+                } else {
+                    0.5 - f_small
+                }
+            }
+        }
+    }
+
+    /// Inverse of [`Lobe1::cdf_low`] for `p ∈ (0, ½]`, given also `q = p − ½` to its own
+    /// digits (for `p` near ½ the caller forms it without passing through ½: `p` there
+    /// holds `p − ½` only to ½'s ulp, 6e-8, which the inverse carries into `z` as an
+    /// absolute error, large against a `z` near 0). For `q > −¼` the inverses in `q`: the
+    /// logistic's `z = ln((½ + q)/(½ − q)) = ln1p(2q/(½ − q))`, the Cauchy's `tan(πq)`,
+    /// the Gaussian's ([`gauss_inv_low`]).
+    #[inline]
+    fn inv_low(&self, p: f32, q: f32) -> f32 {
+        match self.kind {
+            Lobe1Kind::Logistic => {
+                if q > -LOGISTIC_CENTRAL {
+                    math::ln1p(2.0 * q / (0.5 - q))
+                } else {
+                    math::ln(p / (1.0 - p))
+                }
+            }
             Lobe1Kind::Cauchy => {
                 if p < 0.25 {
                     -1.0 / math::tan(math::PI * p)
                 } else {
-                    math::tan(math::PI * (p - 0.5))
+                    math::tan(math::PI * q)
                 }
             }
-            Lobe1Kind::Gaussian => gauss_inv_low(p),
+            Lobe1Kind::Gaussian => gauss_inv_low(p, q),
         }
     }
 
@@ -397,37 +439,56 @@ impl Lobe1 {
         // would lose the digits of `m` to the difference of two nearly equal CDF values and
         // those of `x − a` to the rounding of `μ + s z`. Three steps: the density varies by
         // less than a factor e across the interval. On SPIR-V it runs for every interval
-        // and the result is selected at the end ([`UNIFORM_CONTROL`]).
-        let is_narrow = narrow(self.kind, za, zb, d);
+        // and the result is selected at the end ([`UNIFORM_CONTROL`]). Not for an interval
+        // around the centre (`za < 0 < zb`): its mass is the sum of the two ends' centre
+        // masses, without cancellation, and the inversion below forms `p − ½` from them
+        // (a sample near the centre from `a + s t` kept only the digits of `t`'s Newton
+        // residual, on masses of the interval's size).
+        let is_narrow = narrow(self.kind, za, zb, d) && !(za < 0.0 && zb > 0.0);
         let x_narrow = if is_narrow || UNIFORM_CONTROL {
             a + s * self.newton_offset(za, 1.0, v * d, v * m, d)
         } else {
             a
         };
         // An interval wholly right of the centre is read mirrored, in the left tail, where
-        // the CDF is small and keeps its relative accuracy.
+        // the CDF is small and keeps its relative accuracy; the mirror swaps `v` and
+        // `1 − v`, each kept exact where it is small (`vl` from the lower end, `vh` from
+        // the upper).
         let flip = za >= 0.0;
-        let (lo, hi, v) = if flip {
-            (-zb, -za, 1.0 - v)
+        let w = 1.0 - v;
+        let (lo, hi, vl, vh) = if flip {
+            (-zb, -za, w, v)
         } else {
-            (za, zb, v)
+            (za, zb, v, w)
         };
         let f_lo = self.cdf_low(lo);
+        // F(−|hi|): the CDF at the upper end on its small side.
+        let f_hi_small = self.cdf_low(-math::abs(hi));
         // The interval's mass and 1 − F(hi), each without cancellation.
         let (width, tail_hi) = if hi > 0.0 {
-            let t = self.cdf_low(-hi);
-            (1.0 - t - f_lo, t)
+            (1.0 - f_hi_small - f_lo, f_hi_small)
         } else {
-            let f_hi = self.cdf_low(hi);
-            (f_hi - f_lo, 1.0 - f_hi)
+            (f_hi_small - f_lo, 1.0 - f_hi_small)
         };
         let width = math::max(width, 0.0);
-        let p = f_lo + v * width;
-        let z = if p <= 0.5 {
-            self.inv_low(p)
+        let p = f_lo + vl * width;
+        // `q = p − ½` without passing through ½ where the sample is near the centre
+        // (`|p − ½| < ¼`): `q = vl (F(hi) − ½) − vh (½ − F(lo))` (as `vl + vh = 1`), each
+        // end's centre mass by [`Lobe1::centre_mass`].
+        let central = math::abs(p - 0.5) < 0.25;
+        let q = if central {
+            let s_lo = self.centre_mass(lo, f_lo);
+            let s_hi = math::sign(hi) * self.centre_mass(hi, f_hi_small);
+            vl * s_hi - vh * s_lo
+        } else {
+            p - 0.5
+        };
+        let z = if q <= 0.0 {
+            self.inv_low(p, q)
         } else {
             // 1 − p on its own small side.
-            -self.inv_low(math::max((1.0 - v) * width + tail_hi, 0.0))
+            let pm = math::max(vh * width + tail_hi, 0.0);
+            -self.inv_low(pm, if central { -q } else { pm - 0.5 })
         };
         let z = if flip { -z } else { z };
         if is_narrow { x_narrow } else { mu + s * z }
@@ -451,6 +512,10 @@ fn narrow(kind: Lobe1Kind, za: f32, zb: f32, d: f32) -> bool {
     }
 }
 
+/// Below this `|q|` the logistic's inverse CDF is `ln1p(2q/(½ − q))`, whose argument is
+/// then below ½ in magnitude, where [`math::ln1p`] is its series.
+const LOGISTIC_CENTRAL: f32 = 1.0 / 6.0;
+
 /// 1/√(2π).
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_280_401_432_7;
 
@@ -472,10 +537,13 @@ fn gauss_tail(x: f32) -> f32 {
     0.5 * t * math::exp(poly)
 }
 
-/// `Φ⁻¹(p)` for `p ∈ (0, ½]`: P. J. Acklam's rational approximation (relative error
-/// 1.15e-9) refined by one Halley step on [`gauss_tail`].
+/// `Φ⁻¹(p)` for `p ∈ (0, ½]`, given also `q = p − ½` to its own digits: P. J. Acklam's
+/// rational approximation (relative error 1.15e-9; its central region, `p ≥ 0.02425`, in
+/// `q`) refined by one Halley step on the residual `e = Φ(x) − p`, formed as
+/// `½ erf(x/√2) − q` near the centre (`|x|/√2 < ½`: [`math::erf`]'s Taylor series; `q` then
+/// keeps the digits that `p` near ½ has lost) and as [`gauss_tail`]`(−x) − p` elsewhere.
 #[inline]
-fn gauss_inv_low(p: f32) -> f32 {
+fn gauss_inv_low(p: f32, q: f32) -> f32 {
     if !(p > 0.0) {
         return -14.0;
     }
@@ -488,7 +556,6 @@ fn gauss_inv_low(p: f32) -> f32 {
             / ((((7.784_695_7e-3 * q + 3.224_671_3e-1) * q + 2.445_134_1) * q + 3.754_408_7) * q
                 + 1.0)
     } else {
-        let q = p - 0.5;
         let r = q * q;
         (((((-3.969_683e1 * r + 2.209_461e2) * r - 2.759_285_1e2) * r + 1.383_577_5e2) * r
             - 3.066_479_8e1)
@@ -500,9 +567,14 @@ fn gauss_inv_low(p: f32) -> f32 {
                 * r
                 + 1.0)
     };
-    // Halley: e = Φ(x) − p, u = e √(2π) e^{x²/2}.
+    // Halley: u = e √(2π) e^{x²/2}.
     let x = math::min(x, 0.0);
-    let e = gauss_tail(-x) - p;
+    let h = x * core::f32::consts::FRAC_1_SQRT_2;
+    let e = if h > -0.5 {
+        0.5 * math::erf(h) - q
+    } else {
+        gauss_tail(-x) - p
+    };
     let u = e * math::exp(0.5 * x * x) / FRAC_1_SQRT_TAU;
     let step = u / (1.0 + 0.5 * x * u);
     if step.is_finite() { x - step } else { x }
