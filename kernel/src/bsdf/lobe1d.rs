@@ -72,26 +72,30 @@ impl Lobe1 {
         }
     }
 
-    /// Untruncated density of component `j` at `x`.
+    /// Untruncated density of component `j` at `x`, times `e^{shift}` for the Gaussian
+    /// ([`Lobe1::density_std`]).
     #[inline]
-    fn density_one(&self, j: usize, x: f32) -> f32 {
+    fn density_one(&self, j: usize, x: f32, shift: f32) -> f32 {
         if j >= LOBE1_MAX {
             return 0.0;
         }
         let s = self.scale[j];
-        self.density_std((x - self.mu[j]) / s) / s
+        self.density_std((x - self.mu[j]) / s, shift) / s
     }
 
-    /// Density `F'(z)` of the standardised component.
+    /// Density `F'(z)` of the standardised component; the Gaussian's times `e^{shift}`, as
+    /// `e^{shift − z²/2}/√(2π)` (a density that `e^{−z²/2}` alone would underflow; the
+    /// logistic's and the Cauchy's tails stay within f32's range, and they take
+    /// `shift = 0`, which they ignore).
     #[inline]
-    fn density_std(&self, z: f32) -> f32 {
+    fn density_std(&self, z: f32, shift: f32) -> f32 {
         match self.kind {
             Lobe1Kind::Logistic => {
                 let e = math::exp(-math::abs(z));
                 e / ((1.0 + e) * (1.0 + e))
             }
             Lobe1Kind::Cauchy => 1.0 / (math::PI * (1.0 + z * z)),
-            Lobe1Kind::Gaussian => math::exp(-0.5 * z * z) * FRAC_1_SQRT_TAU,
+            Lobe1Kind::Gaussian => math::exp(shift - 0.5 * z * z) * FRAC_1_SQRT_TAU,
         }
     }
 
@@ -107,21 +111,25 @@ impl Lobe1 {
     /// factor of about 2.5 (the logistic's and the Gaussian's tails fall by `e^{−1}` or more
     /// across the interval; a Cauchy interval with `za zb ≤ −1` straddles the centre with
     /// one end at `|z| ≥ 1`, so its mass exceeds ¼).
+    ///
+    /// The Gaussian's mass comes times `e^{shift}` (`shift ≥ 0`, and 0 unless the interval
+    /// lies on one side of the centre: [`Lobe1::pdf`]'s scaling); the logistic and the
+    /// Cauchy take `shift = 0`.
     #[inline]
-    fn std_mass(&self, za: f32, zb: f32, d: f32) -> f32 {
+    fn std_mass(&self, za: f32, zb: f32, d: f32, shift: f32) -> f32 {
         let m = match self.kind {
             Lobe1Kind::Logistic => {
                 if d < 1.0 {
                     self.cdf_low(za) * self.cdf_low(-zb) * math::expm1(d)
                 } else {
-                    self.std_mass_wide(za, zb)
+                    self.std_mass_wide(za, zb, 0.0)
                 }
             }
             Lobe1Kind::Cauchy => {
                 if za * zb > -1.0 {
                     math::atan(d / (1.0 + za * zb)) * (1.0 / math::PI)
                 } else {
-                    self.std_mass_wide(za, zb)
+                    self.std_mass_wide(za, zb, 0.0)
                 }
             }
             Lobe1Kind::Gaussian => {
@@ -133,24 +141,39 @@ impl Lobe1 {
                     0.0
                 };
                 if use_near {
-                    near
+                    if shift > 0.0 {
+                        near * math::exp(shift)
+                    } else {
+                        near
+                    }
                 } else {
-                    self.std_mass_wide(za, zb)
+                    self.std_mass_wide(za, zb, shift)
                 }
             }
         };
         math::max(m, 0.0)
     }
 
-    /// `F(zb) − F(za)` from the CDFs on their small sides.
+    /// `F(zb) − F(za)` from the CDFs on their small sides; on one side of the centre times
+    /// `e^{shift}` ([`Lobe1::cdf_small`]; `shift` is 0 for an interval around the centre).
     #[inline]
-    fn std_mass_wide(&self, za: f32, zb: f32) -> f32 {
+    fn std_mass_wide(&self, za: f32, zb: f32, shift: f32) -> f32 {
         if zb <= 0.0 {
-            self.cdf_low(zb) - self.cdf_low(za)
+            self.cdf_small(zb, shift) - self.cdf_small(za, shift)
         } else if za >= 0.0 {
-            self.cdf_low(-za) - self.cdf_low(-zb)
+            self.cdf_small(-za, shift) - self.cdf_small(-zb, shift)
         } else {
             1.0 - self.cdf_low(za) - self.cdf_low(-zb)
+        }
+    }
+
+    /// `F(z)` for `z ≤ 0`, the Gaussian's times `e^{shift}` ([`gauss_tail`]; the logistic
+    /// and the Cauchy take `shift = 0`).
+    #[inline]
+    fn cdf_small(&self, z: f32, shift: f32) -> f32 {
+        match self.kind {
+            Lobe1Kind::Gaussian => gauss_tail(-z, shift),
+            Lobe1Kind::Logistic | Lobe1Kind::Cauchy => self.cdf_low(z),
         }
     }
 
@@ -169,9 +192,9 @@ impl Lobe1 {
             }
             Lobe1Kind::Gaussian => {
                 if z <= 0.0 {
-                    gauss_tail(-z)
+                    gauss_tail(-z, 0.0)
                 } else {
-                    1.0 - gauss_tail(z)
+                    1.0 - gauss_tail(z, 0.0)
                 }
             }
         }
@@ -235,16 +258,42 @@ impl Lobe1 {
         }
     }
 
-    /// Mass of component `j` on `[a, b]`.
+    /// Mass of component `j` on `[a, b]`, the Gaussian's times `e^{shift}`
+    /// ([`Lobe1::std_mass`]).
     #[inline]
-    fn mass_one(&self, j: usize, a: f32, b: f32) -> f32 {
+    fn mass_one(&self, j: usize, a: f32, b: f32, shift: f32) -> f32 {
         if j >= LOBE1_MAX || !(b > a) {
             return 0.0;
         }
         let s = self.scale[j];
         let za = (a - self.mu[j]) / s;
         let zb = (b - self.mu[j]) / s;
-        self.std_mass(za, zb, (b - a) / s)
+        self.std_mass(za, zb, (b - a) / s, shift)
+    }
+
+    /// The exponent by which [`Lobe1::pdf`] scales a Gaussian mixture's densities and
+    /// masses: `min_j c_j²/2` over the weighted components, `c_j` the standardised distance
+    /// from the centre to the interval (0 when it holds the centre). Each component's
+    /// terms are then at most `e^{(c² − c_j²)/2}`-scaled tails, the largest of order 1: an
+    /// interval 12 and more scales out keeps its density where `e^{−z²/2}` underflows
+    /// (`e^{−c²/2}` cancels in the ratio). 0 for the logistic and the Cauchy.
+    #[inline]
+    fn pdf_shift(&self, a: f32, b: f32) -> f32 {
+        if self.kind != Lobe1Kind::Gaussian {
+            return 0.0;
+        }
+        let n = self.n();
+        let mut c2 = f32::INFINITY;
+        let mut j = 0;
+        while j < LOBE1_MAX && j < n {
+            if self.weight[j] > 0.0 {
+                let s = self.scale[j];
+                let c = math::max(math::max((a - self.mu[j]) / s, (self.mu[j] - b) / s), 0.0);
+                c2 = math::min(c2, c * c);
+            }
+            j += 1;
+        }
+        if c2.is_finite() { 0.5 * c2 } else { 0.0 }
     }
 
     /// Total weighted mass on `[a, b]`: `Σ w_j m_j(a, b)`.
@@ -253,27 +302,37 @@ impl Lobe1 {
         let mut total = 0.0;
         let mut j = 0;
         while j < LOBE1_MAX && j < n {
-            total += self.weight[j] * self.mass_one(j, a, b);
+            total += self.weight[j] * self.mass_one(j, a, b, 0.0);
             j += 1;
         }
         total
     }
 
-    /// Density at `x` of the mixture truncated to `[a, b]` (0 outside).
+    /// Density at `x` of the mixture truncated to `[a, b]` (0 outside):
+    /// `Σ w_j f_j(x) / Σ w_j m_j(a, b)`, for the Gaussian numerator and mass each times
+    /// `e^{shift}` ([`Lobe1::pdf_shift`]), which cancels.
     #[allow(clippy::manual_range_contains)] // `RangeInclusive::contains` is rejected by spirv-val
     pub fn pdf(&self, x: f32, a: f32, b: f32) -> f32 {
         if !(x >= a && x <= b) {
             return 0.0;
         }
-        let total = self.mass(a, b);
-        if !(total > 0.0) {
-            return 0.0;
-        }
+        let shift = self.pdf_shift(a, b);
         let n = self.n();
-        let mut d = 0.0;
+        let mut total = 0.0;
         let mut j = 0;
         while j < LOBE1_MAX && j < n {
-            d += self.weight[j] * self.density_one(j, x);
+            total += self.weight[j] * self.mass_one(j, a, b, shift);
+            j += 1;
+        }
+        // No density where the lobe carries no f32 mass (`e^{−shift} Σ w m` = [`Lobe1::mass`]
+        // underflows), as [`Lobe1::sample`] then draws nothing.
+        if !(total > 0.0) || (shift > 0.0 && !(total * math::exp(-shift) > 0.0)) {
+            return 0.0;
+        }
+        let mut d = 0.0;
+        j = 0;
+        while j < LOBE1_MAX && j < n {
+            d += self.weight[j] * self.density_one(j, x, shift);
             j += 1;
         }
         d / total
@@ -300,7 +359,7 @@ impl Lobe1 {
         let mut total = 0.0;
         let mut j = 0;
         while j < LOBE1_MAX && j < n {
-            m[j] = self.mass_one(j, a, b);
+            m[j] = self.mass_one(j, a, b, 0.0);
             total += self.weight[j] * m[j];
             j += 1;
         }
@@ -414,7 +473,7 @@ impl Lobe1 {
         while k < 3 {
             let z1 = z0 + dir * t;
             let (lo, hi) = if dir > 0.0 { (z0, z1) } else { (z1, z0) };
-            let step = (self.std_mass(lo, hi, t) - target) / self.density_std(z1);
+            let step = (self.std_mass(lo, hi, t, 0.0) - target) / self.density_std(z1, 0.0);
             if step.is_finite() {
                 t = math::clamp(t - step, 0.0, d);
             }
@@ -519,11 +578,12 @@ const LOGISTIC_CENTRAL: f32 = 1.0 / 6.0;
 /// 1/√(2π).
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_280_401_432_7;
 
-/// `1 − Φ(x) = ½ erfc(x/√2)` for `x ≥ 0`: the Chebyshev-fitted `erfc` of Numerical Recipes
-/// (`erfcc`, fractional error below 1.2e-7 everywhere), one `exp` and no cancellation in
-/// the tail.
+/// `e^{shift} (1 − Φ(x)) = e^{shift} ½ erfc(x/√2)` for `x ≥ 0`: the Chebyshev-fitted `erfc`
+/// of Numerical Recipes (`erfcc`, fractional error below 1.2e-7 everywhere), one `exp` and
+/// no cancellation in the tail; `shift` is added to the exponent (`−x²/2 + …`), so that a
+/// tail beyond f32's range is kept relative to `e^{−shift}` ([`Lobe1::pdf_shift`]).
 #[inline]
-fn gauss_tail(x: f32) -> f32 {
+fn gauss_tail(x: f32, shift: f32) -> f32 {
     let z = math::abs(x) * core::f32::consts::FRAC_1_SQRT_2;
     let t = 1.0 / (1.0 + 0.5 * z);
     let poly = -z * z - 1.265_512_2
@@ -534,7 +594,7 @@ fn gauss_tail(x: f32) -> f32 {
                         + t * (0.278_868_07
                             + t * (-1.135_203_98
                                 + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    0.5 * t * math::exp(poly)
+    0.5 * t * math::exp(poly + shift)
 }
 
 /// `Φ⁻¹(p)` for `p ∈ (0, ½]`, given also `q = p − ½` to its own digits: P. J. Acklam's
@@ -573,7 +633,7 @@ fn gauss_inv_low(p: f32, q: f32) -> f32 {
     let e = if h > -0.5 {
         0.5 * math::erf(h) - q
     } else {
-        gauss_tail(-x) - p
+        gauss_tail(-x, 0.0) - p
     };
     let u = e * math::exp(0.5 * x * x) / FRAC_1_SQRT_TAU;
     let step = u / (1.0 + 0.5 * x * u);
