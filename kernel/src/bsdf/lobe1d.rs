@@ -14,7 +14,10 @@
 //!
 //! Tail accuracy: masses and inverse CDFs are evaluated on the side of the centre where the
 //! CDF is small (`F(z)` for `z ≤ 0`, `1 − F(z) = F(−z)` otherwise), so an interval far in
-//! either tail keeps its relative accuracy.
+//! either tail keeps its relative accuracy; near the centre, where the CDF is near ½, the
+//! inverse CDF takes `p − ½` formed from the masses between the centre and each end, so a
+//! sample near the centre keeps its relative accuracy too. A Gaussian density far out is
+//! formed relative to the interval's nearest tail ([`Lobe1::pdf`]).
 
 use crate::math;
 
@@ -499,10 +502,10 @@ impl Lobe1 {
         // those of `x − a` to the rounding of `μ + s z`. Three steps: the density varies by
         // less than a factor e across the interval. On SPIR-V it runs for every interval
         // and the result is selected at the end ([`UNIFORM_CONTROL`]). Not for an interval
-        // around the centre (`za < 0 < zb`): its mass is the sum of the two ends' centre
-        // masses, without cancellation, and the inversion below forms `p − ½` from them
-        // (a sample near the centre from `a + s t` kept only the digits of `t`'s Newton
-        // residual, on masses of the interval's size).
+        // around the centre (`za < 0 < zb`): the inversion below forms `p − ½` from the
+        // masses between the centre and each end, without cancellation, while a sample
+        // near the centre as `a + s t` kept only the digits of `t`'s Newton residual, on
+        // masses of the interval's size.
         let is_narrow = narrow(self.kind, za, zb, d) && !(za < 0.0 && zb > 0.0);
         let x_narrow = if is_narrow || UNIFORM_CONTROL {
             a + s * self.newton_offset(za, 1.0, v * d, v * m, d)
