@@ -158,31 +158,28 @@ impl Lobe1 {
     }
 
     /// `F(zb) − F(za)` from the CDFs on their small sides; on one side of the centre times
-    /// `e^{shift}` ([`Lobe1::cdf_small`]; `shift` is 0 for an interval around the centre).
+    /// `e^{shift}` ([`Lobe1::cdf_scaled`]; `shift` is 0 for an interval around the centre).
     #[inline]
     fn std_mass_wide(&self, za: f32, zb: f32, shift: f32) -> f32 {
         if zb <= 0.0 {
-            self.cdf_small(zb, shift) - self.cdf_small(za, shift)
+            self.cdf_scaled(zb, shift) - self.cdf_scaled(za, shift)
         } else if za >= 0.0 {
-            self.cdf_small(-za, shift) - self.cdf_small(-zb, shift)
+            self.cdf_scaled(-za, shift) - self.cdf_scaled(-zb, shift)
         } else {
             1.0 - self.cdf_low(za) - self.cdf_low(-zb)
-        }
-    }
-
-    /// `F(z)` for `z ≤ 0`, the Gaussian's times `e^{shift}` ([`gauss_tail`]; the logistic
-    /// and the Cauchy take `shift = 0`).
-    #[inline]
-    fn cdf_small(&self, z: f32, shift: f32) -> f32 {
-        match self.kind {
-            Lobe1Kind::Gaussian => gauss_tail(-z, shift),
-            Lobe1Kind::Logistic | Lobe1Kind::Cauchy => self.cdf_low(z),
         }
     }
 
     /// `F(z)` for the standardised component, accurate where small (`z ≤ 0`).
     #[inline]
     fn cdf_low(&self, z: f32) -> f32 {
+        self.cdf_scaled(z, 0.0)
+    }
+
+    /// [`Lobe1::cdf_low`], for `z ≤ 0` the Gaussian's times `e^{shift}` ([`gauss_tail`]);
+    /// `shift` is 0 for `z > 0` and for the logistic and the Cauchy.
+    #[inline]
+    fn cdf_scaled(&self, z: f32, shift: f32) -> f32 {
         match self.kind {
             Lobe1Kind::Logistic => 1.0 / (1.0 + math::exp(-z)),
             // ½ + atan(z)/π = atan(−1/z)/π for z < 0 (no cancellation).
@@ -194,22 +191,19 @@ impl Lobe1 {
                 }
             }
             Lobe1Kind::Gaussian => {
-                if z <= 0.0 {
-                    gauss_tail(-z, 0.0)
-                } else {
-                    1.0 - gauss_tail(z, 0.0)
-                }
+                let t = gauss_tail(math::abs(z), shift);
+                if z <= 0.0 { t } else { 1.0 - t }
             }
         }
     }
 
     /// `½ − F(−|z|)`, the standardised component's mass between its centre and `z`, to
     /// its own digits where it is small; `f_small` is [`Lobe1::cdf_low`]`(−|z|)`, whose
-    /// difference from ½ serves where it cannot cancel. Near the centre (`|z| < 1`, and
-    /// always for the Cauchy) the closed forms without ½: the logistic's
+    /// difference from ½ serves where it cannot cancel (`F(−|z|) ≤ 0.27`). Near the centre
+    /// (`|z| < 1`) the closed forms without ½: the logistic's
     /// `−½ (e^{−|z|} − 1)/(e^{−|z|} + 1)` (with `expm1`), the Cauchy's `atan(|z|)/π`, the
     /// Gaussian's `½ erf(|z|/√2)` (for `|z|/√2 < ½`, where [`math::erf`] is its Taylor
-    /// series).
+    /// series; beyond, `F(−|z|) ≤ 0.24`).
     #[inline]
     fn centre_mass(&self, z: f32, f_small: f32) -> f32 {
         let az = math::abs(z);
@@ -222,7 +216,13 @@ impl Lobe1 {
                     0.5 - f_small
                 }
             }
-            Lobe1Kind::Cauchy => math::atan(az) * (1.0 / math::PI),
+            Lobe1Kind::Cauchy => {
+                if az < 1.0 {
+                    math::atan(az) * (1.0 / math::PI)
+                } else {
+                    0.5 - f_small
+                }
+            }
             Lobe1Kind::Gaussian => {
                 let x = az * core::f32::consts::FRAC_1_SQRT_2;
                 if x < 0.5 {
@@ -237,14 +237,14 @@ impl Lobe1 {
     /// Inverse of [`Lobe1::cdf_low`] for `p ∈ (0, ½]`, given also `q = p − ½` to its own
     /// digits (for `p` near ½ the caller forms it without passing through ½: `p` there
     /// holds `p − ½` only to ½'s ulp, 6e-8, which the inverse carries into `z` as an
-    /// absolute error, large against a `z` near 0). For `q > −¼` the inverses in `q`: the
-    /// logistic's `z = ln((½ + q)/(½ − q)) = ln1p(2q/(½ − q))`, the Cauchy's `tan(πq)`,
-    /// the Gaussian's ([`gauss_inv_low`]).
+    /// absolute error, large against a `z` near 0). The inverses in `q`: the logistic's
+    /// `z = ln((½ + q)/(½ − q)) = ln1p(2q/(½ − q))` for `|q| <` [`CENTRE_BAND`], the
+    /// Cauchy's `tan(πq)` for `p ≥ ¼`, the Gaussian's ([`gauss_inv_low`]).
     #[inline]
     fn inv_low(&self, p: f32, q: f32) -> f32 {
         match self.kind {
             Lobe1Kind::Logistic => {
-                if q > -LOGISTIC_CENTRAL {
+                if q > -CENTRE_BAND {
                     math::ln1p(2.0 * q / (0.5 - q))
                 } else {
                     math::ln(p / (1.0 - p))
@@ -275,11 +275,12 @@ impl Lobe1 {
     }
 
     /// The exponent by which [`Lobe1::pdf`] scales a Gaussian mixture's densities and
-    /// masses: `min_j c_j²/2` over the weighted components, `c_j` the standardised distance
-    /// from the centre to the interval (0 when it holds the centre). Each component's
-    /// terms are then at most `e^{(c² − c_j²)/2}`-scaled tails, the largest of order 1: an
-    /// interval 12 and more scales out keeps its density where `e^{−z²/2}` underflows
-    /// (`e^{−c²/2}` cancels in the ratio). 0 for the logistic and the Cauchy.
+    /// masses: `c²/2 = min_j c_j²/2` over the weighted components, `c_j` the standardised
+    /// distance from the centre to the interval (0 when it holds the centre). Each
+    /// component's terms are then at most `e^{(c² − c_j²)/2}`-scaled tails, the largest of
+    /// order 1: an interval 12 and more scales out keeps its density where `e^{−z²/2}`
+    /// underflows (`e^{−c²/2}` cancels in the ratio). 0 where `c² ≤` [`PDF_SHIFT_FROM`],
+    /// and for the logistic and the Cauchy.
     #[inline]
     fn pdf_shift(&self, a: f32, b: f32) -> f32 {
         if self.kind != Lobe1Kind::Gaussian {
@@ -290,13 +291,16 @@ impl Lobe1 {
         let mut j = 0;
         while j < LOBE1_MAX && j < n {
             if self.weight[j] > 0.0 {
-                let s = self.scale[j];
-                let c = math::max(math::max((a - self.mu[j]) / s, (self.mu[j] - b) / s), 0.0);
+                let c = math::max(math::max(a - self.mu[j], self.mu[j] - b), 0.0) / self.scale[j];
                 c2 = math::min(c2, c * c);
             }
             j += 1;
         }
-        if c2.is_finite() { 0.5 * c2 } else { 0.0 }
+        if c2 > PDF_SHIFT_FROM && c2.is_finite() {
+            0.5 * c2
+        } else {
+            0.0
+        }
     }
 
     /// Total weighted mass on `[a, b]`: `Σ w_j m_j(a, b)`.
@@ -535,9 +539,9 @@ impl Lobe1 {
         let width = math::max(width, 0.0);
         let p = f_lo + vl * width;
         // `q = p − ½` without passing through ½ where the sample is near the centre
-        // (`|p − ½| < ¼`): `q = vl (F(hi) − ½) − vh (½ − F(lo))` (as `vl + vh = 1`), each
-        // end's centre mass by [`Lobe1::centre_mass`].
-        let central = math::abs(p - 0.5) < 0.25;
+        // (`|p − ½| <` [`CENTRE_BAND`]): `q = vl (F(hi) − ½) − vh (½ − F(lo))` (as
+        // `vl + vh = 1`), each end's centre mass by [`Lobe1::centre_mass`].
+        let central = math::abs(p - 0.5) < CENTRE_BAND;
         let q = if central {
             let s_lo = self.centre_mass(lo, f_lo);
             let s_hi = math::sign(hi) * self.centre_mass(hi, f_hi_small);
@@ -574,9 +578,19 @@ fn narrow(kind: Lobe1Kind, za: f32, zb: f32, d: f32) -> bool {
     }
 }
 
-/// Below this `|q|` the logistic's inverse CDF is `ln1p(2q/(½ − q))`, whose argument is
-/// then below ½ in magnitude, where [`math::ln1p`] is its series.
-const LOGISTIC_CENTRAL: f32 = 1.0 / 6.0;
+/// The inverse CDF forms `q = p − ½` from the ends' centre masses where `|p − ½|` is below
+/// this (there `p`'s rounding to ½'s ulp, 6e-8, is 1e-6 or more of `q`, and the sample's
+/// relative error grows as `q` shrinks; above it the plain `p − ½` costs less than 1e-6),
+/// and the logistic's inverse CDF is `ln1p(2q/(½ − q))` (an argument below ¼ in magnitude,
+/// where [`math::ln1p`] is its series).
+const CENTRE_BAND: f32 = 1.0 / 16.0;
+
+/// [`Lobe1::pdf`] scales a Gaussian's terms only for an interval more than `√64 = 8`
+/// scales from every centre. Nearer, its density `e^{−z²/2}` reaches f32's subnormals
+/// (`e^{−87}`) only where it is below `e^{−55}` of its value at the interval's nearest end,
+/// with less than that share of the interval's mass beyond (far below the 2⁻²⁴ an f32 `u`
+/// resolves), and the interval costs no `exp(shift)`.
+const PDF_SHIFT_FROM: f32 = 64.0;
 
 /// 1/√(2π).
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_280_401_432_7;
