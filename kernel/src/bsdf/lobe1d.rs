@@ -316,8 +316,10 @@ impl Lobe1 {
     }
 
     /// Density at `x` of the mixture truncated to `[a, b]` (0 outside):
-    /// `Σ w_j f_j(x) / Σ w_j m_j(a, b)`, for the Gaussian numerator and mass each times
-    /// `e^{shift}` ([`Lobe1::pdf_shift`]), which cancels.
+    /// `Σ w_j f_j(x) / Σ w_j m_j(a, b)`; a Gaussian's numerator and mass each come times
+    /// `e^{c²/2}` for an interval more than 8 scales from every centre (`c` the nearest
+    /// centre's distance to it, in its scales), which cancels: the density deep in such an
+    /// interval keeps its digits where `e^{−z²/2}` alone would underflow (`pdf_shift`).
     #[allow(clippy::manual_range_contains)] // `RangeInclusive::contains` is rejected by spirv-val
     pub fn pdf(&self, x: f32, a: f32, b: f32) -> f32 {
         if !(x >= a && x <= b) {
