@@ -14,7 +14,10 @@
 //!
 //! Tail accuracy: masses and inverse CDFs are evaluated on the side of the centre where the
 //! CDF is small (`F(z)` for `z ≤ 0`, `1 − F(z) = F(−z)` otherwise), so an interval far in
-//! either tail keeps its relative accuracy.
+//! either tail keeps its relative accuracy; near the centre, where the CDF is near ½, the
+//! inverse CDF takes `p − ½` formed from the masses between the centre and each end, so a
+//! sample near the centre keeps its relative accuracy too. A Gaussian density far out is
+//! formed relative to the interval's nearest tail ([`Lobe1::pdf`]).
 
 use crate::math;
 
@@ -72,26 +75,30 @@ impl Lobe1 {
         }
     }
 
-    /// Untruncated density of component `j` at `x`.
+    /// Untruncated density of component `j` at `x`, times `e^{shift}` for the Gaussian
+    /// ([`Lobe1::density_std`]).
     #[inline]
-    fn density_one(&self, j: usize, x: f32) -> f32 {
+    fn density_one(&self, j: usize, x: f32, shift: f32) -> f32 {
         if j >= LOBE1_MAX {
             return 0.0;
         }
         let s = self.scale[j];
-        self.density_std((x - self.mu[j]) / s) / s
+        self.density_std((x - self.mu[j]) / s, shift) / s
     }
 
-    /// Density `F'(z)` of the standardised component.
+    /// Density `F'(z)` of the standardised component; the Gaussian's times `e^{shift}`, as
+    /// `e^{shift − z²/2}/√(2π)` (a density that `e^{−z²/2}` alone would underflow; the
+    /// logistic's and the Cauchy's tails stay within f32's range, and they take
+    /// `shift = 0`, which they ignore).
     #[inline]
-    fn density_std(&self, z: f32) -> f32 {
+    fn density_std(&self, z: f32, shift: f32) -> f32 {
         match self.kind {
             Lobe1Kind::Logistic => {
                 let e = math::exp(-math::abs(z));
                 e / ((1.0 + e) * (1.0 + e))
             }
             Lobe1Kind::Cauchy => 1.0 / (math::PI * (1.0 + z * z)),
-            Lobe1Kind::Gaussian => math::exp(-0.5 * z * z) * FRAC_1_SQRT_TAU,
+            Lobe1Kind::Gaussian => math::exp(shift - 0.5 * z * z) * FRAC_1_SQRT_TAU,
         }
     }
 
@@ -107,21 +114,25 @@ impl Lobe1 {
     /// factor of about 2.5 (the logistic's and the Gaussian's tails fall by `e^{−1}` or more
     /// across the interval; a Cauchy interval with `za zb ≤ −1` straddles the centre with
     /// one end at `|z| ≥ 1`, so its mass exceeds ¼).
+    ///
+    /// The Gaussian's mass comes times `e^{shift}` (`shift ≥ 0`, and 0 unless the interval
+    /// lies on one side of the centre: [`Lobe1::pdf`]'s scaling); the logistic and the
+    /// Cauchy take `shift = 0`.
     #[inline]
-    fn std_mass(&self, za: f32, zb: f32, d: f32) -> f32 {
+    fn std_mass(&self, za: f32, zb: f32, d: f32, shift: f32) -> f32 {
         let m = match self.kind {
             Lobe1Kind::Logistic => {
                 if d < 1.0 {
                     self.cdf_low(za) * self.cdf_low(-zb) * math::expm1(d)
                 } else {
-                    self.std_mass_wide(za, zb)
+                    self.std_mass_wide(za, zb, 0.0)
                 }
             }
             Lobe1Kind::Cauchy => {
                 if za * zb > -1.0 {
                     math::atan(d / (1.0 + za * zb)) * (1.0 / math::PI)
                 } else {
-                    self.std_mass_wide(za, zb)
+                    self.std_mass_wide(za, zb, 0.0)
                 }
             }
             Lobe1Kind::Gaussian => {
@@ -133,22 +144,27 @@ impl Lobe1 {
                     0.0
                 };
                 if use_near {
-                    near
+                    if shift > 0.0 {
+                        near * math::exp(shift)
+                    } else {
+                        near
+                    }
                 } else {
-                    self.std_mass_wide(za, zb)
+                    self.std_mass_wide(za, zb, shift)
                 }
             }
         };
         math::max(m, 0.0)
     }
 
-    /// `F(zb) − F(za)` from the CDFs on their small sides.
+    /// `F(zb) − F(za)` from the CDFs on their small sides; on one side of the centre times
+    /// `e^{shift}` ([`Lobe1::cdf_scaled`]; `shift` is 0 for an interval around the centre).
     #[inline]
-    fn std_mass_wide(&self, za: f32, zb: f32) -> f32 {
+    fn std_mass_wide(&self, za: f32, zb: f32, shift: f32) -> f32 {
         if zb <= 0.0 {
-            self.cdf_low(zb) - self.cdf_low(za)
+            self.cdf_scaled(zb, shift) - self.cdf_scaled(za, shift)
         } else if za >= 0.0 {
-            self.cdf_low(-za) - self.cdf_low(-zb)
+            self.cdf_scaled(-za, shift) - self.cdf_scaled(-zb, shift)
         } else {
             1.0 - self.cdf_low(za) - self.cdf_low(-zb)
         }
@@ -157,6 +173,13 @@ impl Lobe1 {
     /// `F(z)` for the standardised component, accurate where small (`z ≤ 0`).
     #[inline]
     fn cdf_low(&self, z: f32) -> f32 {
+        self.cdf_scaled(z, 0.0)
+    }
+
+    /// [`Lobe1::cdf_low`], for `z ≤ 0` the Gaussian's times `e^{shift}` ([`gauss_tail`]);
+    /// `shift` is 0 for `z > 0` and for the logistic and the Cauchy.
+    #[inline]
+    fn cdf_scaled(&self, z: f32, shift: f32) -> f32 {
         match self.kind {
             Lobe1Kind::Logistic => 1.0 / (1.0 + math::exp(-z)),
             // ½ + atan(z)/π = atan(−1/z)/π for z < 0 (no cancellation).
@@ -168,41 +191,116 @@ impl Lobe1 {
                 }
             }
             Lobe1Kind::Gaussian => {
-                if z <= 0.0 {
-                    gauss_tail(-z)
+                let t = gauss_tail(math::abs(z), shift);
+                if z <= 0.0 { t } else { 1.0 - t }
+            }
+        }
+    }
+
+    /// `½ − F(−|z|)`, the standardised component's mass between its centre and `z`, to
+    /// its own digits where it is small; `f_small` is [`Lobe1::cdf_low`]`(−|z|)`, whose
+    /// difference from ½ serves where it cannot cancel (`F(−|z|) ≤ 0.27`). Near the centre
+    /// (`|z| < 1`) the closed forms without ½: the logistic's
+    /// `−½ (e^{−|z|} − 1)/(e^{−|z|} + 1)` (with `expm1`), the Cauchy's `atan(|z|)/π`, the
+    /// Gaussian's `½ erf(|z|/√2)` (for `|z|/√2 < ½`, where [`math::erf`] is its Taylor
+    /// series; beyond, `F(−|z|) ≤ 0.24`).
+    #[inline]
+    fn centre_mass(&self, z: f32, f_small: f32) -> f32 {
+        let az = math::abs(z);
+        match self.kind {
+            Lobe1Kind::Logistic => {
+                if az < 1.0 {
+                    let e = math::expm1(-az);
+                    -0.5 * e / (2.0 + e)
                 } else {
-                    1.0 - gauss_tail(z)
+                    0.5 - f_small
+                }
+            }
+            Lobe1Kind::Cauchy => {
+                if az < 1.0 {
+                    math::atan(az) * (1.0 / math::PI)
+                } else {
+                    0.5 - f_small
+                }
+            }
+            Lobe1Kind::Gaussian => {
+                let x = az * core::f32::consts::FRAC_1_SQRT_2;
+                if x < 0.5 {
+                    0.5 * math::erf(x)
+                } else {
+                    0.5 - f_small
                 }
             }
         }
     }
 
-    /// Inverse of [`Lobe1::cdf_low`] for `p ∈ (0, ½]`.
+    /// Inverse of [`Lobe1::cdf_low`] for `p ∈ (0, ½]`, given also `q = p − ½` to its own
+    /// digits (for `p` near ½ the caller forms it without passing through ½: `p` there
+    /// holds `p − ½` only to ½'s ulp, 6e-8, which the inverse carries into `z` as an
+    /// absolute error, large against a `z` near 0). The inverses in `q`: the logistic's
+    /// `z = ln((½ + q)/(½ − q)) = ln1p(2q/(½ − q))` for `|q| <` [`CENTRE_BAND`], the
+    /// Cauchy's `tan(πq)` for `p ≥ ¼`, the Gaussian's ([`gauss_inv_low`]).
     #[inline]
-    fn inv_low(&self, p: f32) -> f32 {
+    fn inv_low(&self, p: f32, q: f32) -> f32 {
         match self.kind {
-            Lobe1Kind::Logistic => math::ln(p / (1.0 - p)),
+            Lobe1Kind::Logistic => {
+                if q > -CENTRE_BAND {
+                    math::ln1p(2.0 * q / (0.5 - q))
+                } else {
+                    math::ln(p / (1.0 - p))
+                }
+            }
             Lobe1Kind::Cauchy => {
                 if p < 0.25 {
                     -1.0 / math::tan(math::PI * p)
                 } else {
-                    math::tan(math::PI * (p - 0.5))
+                    math::tan(math::PI * q)
                 }
             }
-            Lobe1Kind::Gaussian => gauss_inv_low(p),
+            Lobe1Kind::Gaussian => gauss_inv_low(p, q),
         }
     }
 
-    /// Mass of component `j` on `[a, b]`.
+    /// Mass of component `j` on `[a, b]`, the Gaussian's times `e^{shift}`
+    /// ([`Lobe1::std_mass`]).
     #[inline]
-    fn mass_one(&self, j: usize, a: f32, b: f32) -> f32 {
+    fn mass_one(&self, j: usize, a: f32, b: f32, shift: f32) -> f32 {
         if j >= LOBE1_MAX || !(b > a) {
             return 0.0;
         }
         let s = self.scale[j];
         let za = (a - self.mu[j]) / s;
         let zb = (b - self.mu[j]) / s;
-        self.std_mass(za, zb, (b - a) / s)
+        self.std_mass(za, zb, (b - a) / s, shift)
+    }
+
+    /// The exponent by which [`Lobe1::pdf`] scales a Gaussian mixture's densities and
+    /// masses: `c²/2 = min_j c_j²/2` over the weighted components, `c_j` the standardised
+    /// distance from the centre to the interval (0 when it holds the centre). Each
+    /// component's terms are then at most `e^{(c² − c_j²)/2}`-scaled tails, the largest of
+    /// order 1: an interval 12 and more scales out keeps its density where `e^{−z²/2}`
+    /// underflows (`e^{−c²/2}` cancels in the ratio). 0 where `c² ≤` [`PDF_SHIFT_FROM`],
+    /// and for the logistic and the Cauchy.
+    #[inline]
+    fn pdf_shift(&self, a: f32, b: f32) -> f32 {
+        if self.kind != Lobe1Kind::Gaussian {
+            return 0.0;
+        }
+        let n = self.n();
+        let mut c2 = f32::INFINITY;
+        let mut j = 0;
+        while j < LOBE1_MAX && j < n {
+            if self.weight[j] > 0.0 {
+                let c = math::max(math::max(a - self.mu[j], self.mu[j] - b), 0.0) / self.scale[j];
+                c2 = math::min(c2, c * c);
+            }
+            j += 1;
+        }
+        if c2 > PDF_SHIFT_FROM && c2.is_finite() {
+            0.5 * c2
+        } else {
+            0.0
+        }
     }
 
     /// Total weighted mass on `[a, b]`: `Σ w_j m_j(a, b)`.
@@ -211,27 +309,39 @@ impl Lobe1 {
         let mut total = 0.0;
         let mut j = 0;
         while j < LOBE1_MAX && j < n {
-            total += self.weight[j] * self.mass_one(j, a, b);
+            total += self.weight[j] * self.mass_one(j, a, b, 0.0);
             j += 1;
         }
         total
     }
 
-    /// Density at `x` of the mixture truncated to `[a, b]` (0 outside).
+    /// Density at `x` of the mixture truncated to `[a, b]` (0 outside):
+    /// `Σ w_j f_j(x) / Σ w_j m_j(a, b)`; a Gaussian's numerator and mass each come times
+    /// `e^{c²/2}` for an interval more than 8 scales from every centre (`c` the nearest
+    /// centre's distance to it, in its scales), which cancels: the density deep in such an
+    /// interval keeps its digits where `e^{−z²/2}` alone would underflow (`pdf_shift`).
     #[allow(clippy::manual_range_contains)] // `RangeInclusive::contains` is rejected by spirv-val
     pub fn pdf(&self, x: f32, a: f32, b: f32) -> f32 {
         if !(x >= a && x <= b) {
             return 0.0;
         }
-        let total = self.mass(a, b);
-        if !(total > 0.0) {
-            return 0.0;
-        }
+        let shift = self.pdf_shift(a, b);
         let n = self.n();
-        let mut d = 0.0;
+        let mut total = 0.0;
         let mut j = 0;
         while j < LOBE1_MAX && j < n {
-            d += self.weight[j] * self.density_one(j, x);
+            total += self.weight[j] * self.mass_one(j, a, b, shift);
+            j += 1;
+        }
+        // No density where the lobe carries no f32 mass (`e^{−shift} Σ w m` = [`Lobe1::mass`]
+        // underflows), as [`Lobe1::sample`] then draws nothing.
+        if !(total > 0.0) || (shift > 0.0 && !(total * math::exp(-shift) > 0.0)) {
+            return 0.0;
+        }
+        let mut d = 0.0;
+        j = 0;
+        while j < LOBE1_MAX && j < n {
+            d += self.weight[j] * self.density_one(j, x, shift);
             j += 1;
         }
         d / total
@@ -258,7 +368,7 @@ impl Lobe1 {
         let mut total = 0.0;
         let mut j = 0;
         while j < LOBE1_MAX && j < n {
-            m[j] = self.mass_one(j, a, b);
+            m[j] = self.mass_one(j, a, b, 0.0);
             total += self.weight[j] * m[j];
             j += 1;
         }
@@ -372,7 +482,7 @@ impl Lobe1 {
         while k < 3 {
             let z1 = z0 + dir * t;
             let (lo, hi) = if dir > 0.0 { (z0, z1) } else { (z1, z0) };
-            let step = (self.std_mass(lo, hi, t) - target) / self.density_std(z1);
+            let step = (self.std_mass(lo, hi, t, 0.0) - target) / self.density_std(z1, 0.0);
             if step.is_finite() {
                 t = math::clamp(t - step, 0.0, d);
             }
@@ -397,37 +507,56 @@ impl Lobe1 {
         // would lose the digits of `m` to the difference of two nearly equal CDF values and
         // those of `x − a` to the rounding of `μ + s z`. Three steps: the density varies by
         // less than a factor e across the interval. On SPIR-V it runs for every interval
-        // and the result is selected at the end ([`UNIFORM_CONTROL`]).
-        let is_narrow = narrow(self.kind, za, zb, d);
+        // and the result is selected at the end ([`UNIFORM_CONTROL`]). Not for an interval
+        // around the centre (`za < 0 < zb`): the inversion below forms `p − ½` from the
+        // masses between the centre and each end, without cancellation, while a sample
+        // near the centre as `a + s t` kept only the digits of `t`'s Newton residual, on
+        // masses of the interval's size.
+        let is_narrow = narrow(self.kind, za, zb, d) && !(za < 0.0 && zb > 0.0);
         let x_narrow = if is_narrow || UNIFORM_CONTROL {
             a + s * self.newton_offset(za, 1.0, v * d, v * m, d)
         } else {
             a
         };
         // An interval wholly right of the centre is read mirrored, in the left tail, where
-        // the CDF is small and keeps its relative accuracy.
+        // the CDF is small and keeps its relative accuracy; the mirror swaps `v` and
+        // `1 − v`, each kept exact where it is small (`vl` from the lower end, `vh` from
+        // the upper).
         let flip = za >= 0.0;
-        let (lo, hi, v) = if flip {
-            (-zb, -za, 1.0 - v)
+        let w = 1.0 - v;
+        let (lo, hi, vl, vh) = if flip {
+            (-zb, -za, w, v)
         } else {
-            (za, zb, v)
+            (za, zb, v, w)
         };
         let f_lo = self.cdf_low(lo);
+        // F(−|hi|): the CDF at the upper end on its small side.
+        let f_hi_small = self.cdf_low(-math::abs(hi));
         // The interval's mass and 1 − F(hi), each without cancellation.
         let (width, tail_hi) = if hi > 0.0 {
-            let t = self.cdf_low(-hi);
-            (1.0 - t - f_lo, t)
+            (1.0 - f_hi_small - f_lo, f_hi_small)
         } else {
-            let f_hi = self.cdf_low(hi);
-            (f_hi - f_lo, 1.0 - f_hi)
+            (f_hi_small - f_lo, 1.0 - f_hi_small)
         };
         let width = math::max(width, 0.0);
-        let p = f_lo + v * width;
-        let z = if p <= 0.5 {
-            self.inv_low(p)
+        let p = f_lo + vl * width;
+        // `q = p − ½` without passing through ½ where the sample is near the centre
+        // (`|p − ½| <` [`CENTRE_BAND`]): `q = vl (F(hi) − ½) − vh (½ − F(lo))` (as
+        // `vl + vh = 1`), each end's centre mass by [`Lobe1::centre_mass`].
+        let central = math::abs(p - 0.5) < CENTRE_BAND;
+        let q = if central {
+            let s_lo = self.centre_mass(lo, f_lo);
+            let s_hi = math::sign(hi) * self.centre_mass(hi, f_hi_small);
+            vl * s_hi - vh * s_lo
+        } else {
+            p - 0.5
+        };
+        let z = if q <= 0.0 {
+            self.inv_low(p, q)
         } else {
             // 1 − p on its own small side.
-            -self.inv_low(math::max((1.0 - v) * width + tail_hi, 0.0))
+            let pm = math::max(vh * width + tail_hi, 0.0);
+            -self.inv_low(pm, if central { -q } else { pm - 0.5 })
         };
         let z = if flip { -z } else { z };
         if is_narrow { x_narrow } else { mu + s * z }
@@ -451,14 +580,29 @@ fn narrow(kind: Lobe1Kind, za: f32, zb: f32, d: f32) -> bool {
     }
 }
 
+/// The inverse CDF forms `q = p − ½` from the ends' centre masses where `|p − ½|` is below
+/// this (there `p`'s rounding to ½'s ulp, 6e-8, is 1e-6 or more of `q`, and the sample's
+/// relative error grows as `q` shrinks; above it the plain `p − ½` costs less than 1e-6),
+/// and the logistic's inverse CDF is `ln1p(2q/(½ − q))` (an argument below ¼ in magnitude,
+/// where [`math::ln1p`] is its series).
+const CENTRE_BAND: f32 = 1.0 / 16.0;
+
+/// [`Lobe1::pdf`] scales a Gaussian's terms only for an interval more than `√64 = 8`
+/// scales from every centre. Nearer, its density `e^{−z²/2}` reaches f32's subnormals
+/// (`e^{−87}`) only where it is below `e^{−55}` of its value at the interval's nearest end,
+/// with less than that share of the interval's mass beyond (far below the 2⁻²⁴ an f32 `u`
+/// resolves), and the interval costs no `exp(shift)`.
+const PDF_SHIFT_FROM: f32 = 64.0;
+
 /// 1/√(2π).
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_280_401_432_7;
 
-/// `1 − Φ(x) = ½ erfc(x/√2)` for `x ≥ 0`: the Chebyshev-fitted `erfc` of Numerical Recipes
-/// (`erfcc`, fractional error below 1.2e-7 everywhere), one `exp` and no cancellation in
-/// the tail.
+/// `e^{shift} (1 − Φ(x)) = e^{shift} ½ erfc(x/√2)` for `x ≥ 0`: the Chebyshev-fitted `erfc`
+/// of Numerical Recipes (`erfcc`, fractional error below 1.2e-7 everywhere), one `exp` and
+/// no cancellation in the tail; `shift` is added to the exponent (`−x²/2 + …`), so that a
+/// tail beyond f32's range is kept relative to `e^{−shift}` ([`Lobe1::pdf_shift`]).
 #[inline]
-fn gauss_tail(x: f32) -> f32 {
+fn gauss_tail(x: f32, shift: f32) -> f32 {
     let z = math::abs(x) * core::f32::consts::FRAC_1_SQRT_2;
     let t = 1.0 / (1.0 + 0.5 * z);
     let poly = -z * z - 1.265_512_2
@@ -469,13 +613,16 @@ fn gauss_tail(x: f32) -> f32 {
                         + t * (0.278_868_07
                             + t * (-1.135_203_98
                                 + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    0.5 * t * math::exp(poly)
+    0.5 * t * math::exp(poly + shift)
 }
 
-/// `Φ⁻¹(p)` for `p ∈ (0, ½]`: P. J. Acklam's rational approximation (relative error
-/// 1.15e-9) refined by one Halley step on [`gauss_tail`].
+/// `Φ⁻¹(p)` for `p ∈ (0, ½]`, given also `q = p − ½` to its own digits: P. J. Acklam's
+/// rational approximation (relative error 1.15e-9; its central region, `p ≥ 0.02425`, in
+/// `q`) refined by one Halley step on the residual `e = Φ(x) − p`, formed as
+/// `½ erf(x/√2) − q` near the centre (`|x|/√2 < ½`: [`math::erf`]'s Taylor series; `q` then
+/// keeps the digits that `p` near ½ has lost) and as [`gauss_tail`]`(−x) − p` elsewhere.
 #[inline]
-fn gauss_inv_low(p: f32) -> f32 {
+fn gauss_inv_low(p: f32, q: f32) -> f32 {
     if !(p > 0.0) {
         return -14.0;
     }
@@ -488,7 +635,6 @@ fn gauss_inv_low(p: f32) -> f32 {
             / ((((7.784_695_7e-3 * q + 3.224_671_3e-1) * q + 2.445_134_1) * q + 3.754_408_7) * q
                 + 1.0)
     } else {
-        let q = p - 0.5;
         let r = q * q;
         (((((-3.969_683e1 * r + 2.209_461e2) * r - 2.759_285_1e2) * r + 1.383_577_5e2) * r
             - 3.066_479_8e1)
@@ -500,9 +646,14 @@ fn gauss_inv_low(p: f32) -> f32 {
                 * r
                 + 1.0)
     };
-    // Halley: e = Φ(x) − p, u = e √(2π) e^{x²/2}.
+    // Halley: u = e √(2π) e^{x²/2}.
     let x = math::min(x, 0.0);
-    let e = gauss_tail(-x) - p;
+    let h = x * core::f32::consts::FRAC_1_SQRT_2;
+    let e = if h > -0.5 {
+        0.5 * math::erf(h) - q
+    } else {
+        gauss_tail(-x, 0.0) - p
+    };
     let u = e * math::exp(0.5 * x * x) / FRAC_1_SQRT_TAU;
     let step = u / (1.0 + 0.5 * x * u);
     if step.is_finite() { x - step } else { x }
