@@ -48,6 +48,15 @@ pub fn map_lanes<F: LaneFn>(backend: Backend, inputs: &[F::In], f: &F) -> Vec<F:
     out
 }
 
+/// [`map_lanes`] on one thread with the baseline instruction set whatever the CPU has: the
+/// fallback path of the run-time dispatch, callable on an AVX2 machine so that tests can
+/// compare the two (every lane's arithmetic is the same, so are the bits).
+pub fn map_lanes_baseline<F: LaneFn>(inputs: &[F::In], f: &F) -> Vec<F::Out> {
+    let mut out = vec![F::Out::default(); inputs.len()];
+    run_batches(inputs, &mut out, f);
+    out
+}
+
 /// Whether [`map_lanes`] runs its batches with AVX2 + FMA on this CPU.
 pub fn avx2_fma() -> bool {
     #[cfg(target_arch = "x86_64")]

@@ -1,6 +1,6 @@
 //! BRDF tables and footprint tables on the CPU.
 
-use crate::lanes::{LANES, LaneFn, map_lanes};
+use crate::lanes::{LANES, LaneFn, map_lanes, map_lanes_baseline};
 use crate::parallel::{Backend, map};
 use scratchwave_host::{FootprintRow, ScratchLookup};
 use scratchwave_kernel::footprint::Ellipse;
@@ -42,6 +42,12 @@ pub fn evaluate_ghs_table(
     queries: &[TableQuery],
 ) -> Vec<f32> {
     map_lanes(backend, queries, &GhsTable(params))
+}
+
+/// [`evaluate_ghs_table`]'s lane path on one thread with the baseline instruction set (the
+/// run-time dispatch's fallback; see [`crate::lanes::map_lanes_baseline`]).
+pub fn evaluate_ghs_table_baseline(params: &GhsParams, queries: &[TableQuery]) -> Vec<f32> {
+    map_lanes_baseline(queries, &GhsTable(params))
 }
 
 /// [`evaluate_ghs`] as a [`LaneFn`].

@@ -144,3 +144,34 @@ fn ghs_in_lanes_is_within_a_few_ulp_of_scalar() {
     }
     println!("worst over all materials: {worst_all} ULP");
 }
+
+/// The run-time dispatch's two paths (AVX2 + FMA where the CPU has them, else the baseline
+/// ISA: SSE2 on x86-64) give the same bits: each lane's arithmetic is the same on every width.
+#[test]
+fn ghs_in_lanes_is_bit_identical_with_and_without_avx2() {
+    let q = queries(20_000, 11);
+    for p in [
+        presets::channel(presets::ROUGH_METAL, &presets::GOLD, 1),
+        presets::GLOSSY_PLASTIC,
+        presets::TRANSLUCENT_STONE,
+    ] {
+        let dispatched = evaluate_ghs_table(Backend::SimdSingleThread, &p, &q);
+        let baseline = scratchwave_cpu::table::evaluate_ghs_table_baseline(&p, &q);
+        assert!(dispatched.iter().any(|v| *v > 0.0));
+        let diff = dispatched
+            .iter()
+            .zip(&baseline)
+            .position(|(a, b)| a.to_bits() != b.to_bits());
+        assert!(
+            diff.is_none(),
+            "query {diff:?}: AVX2 {:?} vs baseline {:?} (AVX2 + FMA on this CPU: {})",
+            diff.map(|i| dispatched[i]),
+            diff.map(|i| baseline[i]),
+            scratchwave_cpu::lanes::avx2_fma()
+        );
+    }
+    println!(
+        "AVX2 + FMA path taken: {}",
+        scratchwave_cpu::lanes::avx2_fma()
+    );
+}
