@@ -79,18 +79,26 @@ impl Real for f32 {
     }
     #[inline(always)]
     fn gather_array<const K: usize>(table: &[f32; K], index: f32) -> f32 {
-        if index >= 0.0 && index < K as f32 {
-            table[index as usize]
-        } else {
-            0.0
+        match table_index(index, K) {
+            Some(i) => table[i],
+            None => 0.0,
         }
     }
     #[inline(always)]
     fn gather(table: &[f32], index: f32) -> f32 {
-        if index >= 0.0 && index < table.len() as f32 {
-            table[index as usize]
-        } else {
-            0.0
+        match table_index(index, table.len()) {
+            Some(i) => table[i],
+            None => 0.0,
         }
+    }
+}
+
+/// `index` as a position in a table of `len` entries, `None` outside it (and for NaN).
+#[inline(always)]
+fn table_index(index: f32, len: usize) -> Option<usize> {
+    if index >= 0.0 && index < len as f32 {
+        Some(index as usize)
+    } else {
+        None
     }
 }
