@@ -58,9 +58,7 @@ pub fn exp(x: f32) -> f32 {
     // product and loses up to 18 ULP (measured on lavapipe); two separate factors leave it
     // nothing to merge.
     let kf = libm_free_floor(x * FRAC_1_LN2_HI + 0.5);
-    let r = x - kf * LN2_HI;
-    let u = -kf * LN2_LO;
-    let er = exp_reduced(r, u);
+    let er = exp_reduced(x, kf);
     // 2^k in two factors so that k = 128 (x near the overflow edge) and k < -126
     // (subnormal results) stay representable; NaN makes `k` meaningless but keeps `er` NaN.
     let k = kf as i32;
@@ -68,9 +66,12 @@ pub fn exp(x: f32) -> f32 {
     er * exp2i(k1) * exp2i(k - k1)
 }
 
-/// `e^r · e^u` for the reduced arguments of [`exp`]: `|r| ≤ ln2_hi/2`, `u = −k·ln2_lo`.
+/// `e^x / 2^k` for `k = kf` (an integer with `|x − k·ln2_hi| ≤ ln2_hi/2`): `e^r · e^u` with
+/// `r = x − k·ln2_hi` (exact) and `u = −k·ln2_lo`, shared by [`exp`] and [`exp_branchless`].
 #[inline(always)]
-fn exp_reduced(r: f32, u: f32) -> f32 {
+fn exp_reduced(x: f32, kf: f32) -> f32 {
+    let r = x - kf * LN2_HI;
+    let u = -kf * LN2_LO;
     let lo = 1.0 + u * (1.0 + u * (0.5 + u * (1.0 / 6.0 + u * (1.0 / 24.0))));
     let r2 = r * r;
     let mut p = 1.987_569_150_0e-4_f32;
@@ -110,8 +111,7 @@ pub fn exp_branchless(x: f32) -> f32 {
         xc
     };
     let kf = floor_branchless(xc * FRAC_1_LN2_HI + 0.5);
-    let r = xc - kf * LN2_HI;
-    let er = exp_reduced(r, -kf * LN2_LO);
+    let er = exp_reduced(xc, kf);
     // k from the mantissa of `kf + 1.5·2²³` (kf is an integer in [-150, 128]).
     let k = ((kf + K_MAGIC).to_bits() as i32) - (K_MAGIC.to_bits() as i32);
     let k1 = k >> 1;
