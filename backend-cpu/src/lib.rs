@@ -20,4 +20,4 @@ pub mod table;
 
 pub use cpu_backend::Cpu;
 pub use parallel::Backend;
-pub use table::{evaluate_ghs_table, evaluate_table, footprint_table};
+pub use table::{evaluate_ghs_table, evaluate_table, evaluate_table_counted, footprint_table};

@@ -7,22 +7,147 @@ use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::ghs::GhsParams;
 use scratchwave_kernel::ghs::g1::G1Table;
 use scratchwave_kernel::lane::{Lanes, V3};
-use scratchwave_kernel::scratch::Scratch;
+use scratchwave_kernel::scratch::response::CUTOFF_SIGMAS;
+use scratchwave_kernel::scratch::{LaneUse, Scratch, ScratchBvh};
 use scratchwave_kernel::table::{
-    TableParams, TableQuery, evaluate, evaluate_ghs, evaluate_ghs_lanes,
+    TableParams, TableQuery, evaluate, evaluate_batch, evaluate_ghs, evaluate_ghs_lanes,
 };
 use scratchwave_kernel::units::direction;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Evaluates every query against the scratch set (through the BVH lookup, built once).
+///
+/// The SIMD backends sort the queries by shading point ([`locality_order`]) and evaluate
+/// them in batches of [`LANES`] that share one walk over their scratches
+/// ([`evaluate_batch`]); the results come back in the input order.
 pub fn evaluate_table(
     backend: Backend,
     params: &TableParams,
     scratches: &[Scratch],
     queries: &[TableQuery],
 ) -> Vec<f32> {
+    evaluate_table_counted(backend, params, scratches, queries).0
+}
+
+/// [`evaluate_table`] and how the lanes were used (zero counts on [`Backend::Scalar`]).
+pub fn evaluate_table_counted(
+    backend: Backend,
+    params: &TableParams,
+    scratches: &[Scratch],
+    queries: &[TableQuery],
+) -> (Vec<f32>, LaneUse) {
+    if backend == Backend::Scalar {
+        let lookup = ScratchLookup::new(scratches, params.sigma_um);
+        let f = ScratchTable::new(params, lookup.set());
+        return (map_lanes(backend, queries, &f), LaneUse::default());
+    }
+    in_sorted_batches(params, scratches, queries, |q, f| map_lanes(backend, q, f))
+}
+
+/// [`evaluate_table`]'s lane path on one thread with the baseline instruction set (the
+/// run-time dispatch's fallback; see [`crate::lanes::map_lanes_baseline`]).
+pub fn evaluate_table_baseline(
+    params: &TableParams,
+    scratches: &[Scratch],
+    queries: &[TableQuery],
+) -> Vec<f32> {
+    in_sorted_batches(params, scratches, queries, |q, f| map_lanes_baseline(q, f)).0
+}
+
+/// `run` over the queries in [`locality_order`], the results put back in input order.
+fn in_sorted_batches(
+    params: &TableParams,
+    scratches: &[Scratch],
+    queries: &[TableQuery],
+    run: impl Fn(&[TableQuery], &ScratchTable) -> Vec<f32>,
+) -> (Vec<f32>, LaneUse) {
     let lookup = ScratchLookup::new(scratches, params.sigma_um);
-    let set = lookup.set();
-    map(backend, queries, |q| evaluate(params, q, &set))
+    let f = ScratchTable::new(params, lookup.set());
+    let order = locality_order(queries, CUTOFF_SIGMAS * params.sigma_um);
+    let sorted: Vec<TableQuery> = order.iter().map(|&i| queries[i]).collect();
+    let values = run(&sorted, &f);
+    let mut out = vec![0.0; queries.len()];
+    for (&i, v) in order.iter().zip(values) {
+        out[i] = v;
+    }
+    (out, f.lane_use())
+}
+
+/// The queries' indices sorted along a Z-order curve of their shading points on a grid of
+/// `cell` µm, so that neighbours in the order share their scratch candidates. Points that
+/// are not finite go last; ties keep the input order.
+pub fn locality_order(queries: &[TableQuery], cell: f32) -> Vec<usize> {
+    let inv = if cell > 0.0 && cell.is_finite() {
+        1.0 / cell
+    } else {
+        1.0
+    };
+    // Grid coordinates offset into u32 (saturating casts; far points share the edge cells).
+    let key = |q: &TableQuery| -> u64 {
+        let [x, y] = q.x;
+        if !(x.is_finite() && y.is_finite()) {
+            return u64::MAX;
+        }
+        let cell = |v: f32| ((v * inv).floor() as i32 as i64 + (1 << 31)) as u32;
+        spread_bits(cell(x)) | (spread_bits(cell(y)) << 1)
+    };
+    let mut order: Vec<usize> = (0..queries.len()).collect();
+    order.sort_by_key(|&i| key(&queries[i]));
+    order
+}
+
+/// The 32 bits of `v` at the even bit positions of a u64 (one half of a Morton code).
+fn spread_bits(v: u32) -> u64 {
+    let mut x = u64::from(v);
+    x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+    x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+    x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+    x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+    (x | (x << 1)) & 0x5555_5555_5555_5555
+}
+
+/// [`evaluate`] as a [`LaneFn`] ([`evaluate_batch`] on the lanes), counting lane use.
+struct ScratchTable<'a> {
+    params: &'a TableParams,
+    set: ScratchBvh<'a>,
+    use_counts: [AtomicU64; 3],
+}
+
+impl<'a> ScratchTable<'a> {
+    fn new(params: &'a TableParams, set: ScratchBvh<'a>) -> Self {
+        ScratchTable {
+            params,
+            set,
+            use_counts: Default::default(),
+        }
+    }
+
+    fn lane_use(&self) -> LaneUse {
+        let [b, c, l] = &self.use_counts;
+        LaneUse {
+            batches: b.load(Ordering::Relaxed),
+            candidates: c.load(Ordering::Relaxed),
+            lanes: l.load(Ordering::Relaxed),
+        }
+    }
+}
+
+impl LaneFn for ScratchTable<'_> {
+    type In = TableQuery;
+    type Out = f32;
+    #[inline(always)]
+    fn lanes(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
+        let mut u = LaneUse::default();
+        let v = evaluate_batch(self.params, q, &self.set, &mut u);
+        let [b, c, l] = &self.use_counts;
+        b.fetch_add(u.batches, Ordering::Relaxed);
+        c.fetch_add(u.candidates, Ordering::Relaxed);
+        l.fetch_add(u.lanes, Ordering::Relaxed);
+        v
+    }
+    fn one(&self, q: &TableQuery) -> f32 {
+        evaluate(self.params, q, &self.set)
+    }
 }
 
 /// Evaluates footprint queries `(scratch, ellipse)`.

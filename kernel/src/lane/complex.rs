@@ -41,6 +41,28 @@ impl<R: Real> Cx<R> {
     }
 }
 
+impl From<crate::math::C32> for Cx<f32> {
+    #[inline(always)]
+    fn from(z: crate::math::C32) -> Self {
+        Cx::new(z.re, z.im)
+    }
+}
+
+impl From<Cx<f32>> for crate::math::C32 {
+    #[inline(always)]
+    fn from(z: Cx<f32>) -> Self {
+        crate::math::C32::new(z.re, z.im)
+    }
+}
+
+impl<R: Real> Cx<R> {
+    /// `i·z`.
+    #[inline(always)]
+    pub fn mul_i(self) -> Self {
+        Cx::new(-self.im, self.re)
+    }
+}
+
 impl<R: Real> Add for Cx<R> {
     type Output = Self;
     #[inline(always)]

@@ -224,6 +224,10 @@ impl<const N: usize> Real for Lanes<N> {
         self.map(portable::floor_branchless)
     }
     #[inline(always)]
+    fn trunc(self) -> Self {
+        self.map(|x| (x as i32) as f32)
+    }
+    #[inline(always)]
     fn sqrt(self) -> Self {
         // libm's `sqrtf` is the scalar `sqrtss` instruction, which LLVM does not vectorise;
         // `sqrtps` is the same correctly rounded square root, four lanes at a time.

@@ -69,6 +69,9 @@ pub trait Real:
     fn abs(self) -> Self;
     /// Largest integer not above `x`.
     fn floor(self) -> Self;
+    /// `x` rounded toward zero, for `|x| < 2³¹` (the `as i32 as f32` round trip: beyond
+    /// that range the result saturates to ±2³¹, and NaN gives 0).
+    fn trunc(self) -> Self;
     /// √x (NaN below 0).
     fn sqrt(self) -> Self;
     /// e^x.
@@ -82,7 +85,50 @@ pub trait Real:
     fn gather_array<const K: usize>(table: &[f32; K], index: Self) -> Self;
 }
 
-/// `branch!(m, then, other)`: `then` in the lanes where the mask `m` holds and `other`
+/// A value that per-lane conditions can choose between: every [`Real`], and the compound
+/// lane types built from them ([`Cx`], pairs), so that [`branch!`](crate::lane) works on
+/// them alike.
+pub trait Blend<M>: Copy {
+    /// `a` in the lanes where `m` holds, `b` elsewhere.
+    fn blend(m: M, a: Self, b: Self) -> Self;
+    /// Zero in every lane (the placeholder for a side no lane takes).
+    fn zero() -> Self;
+}
+
+impl<R: Real> Blend<R::Mask> for R {
+    #[inline(always)]
+    fn blend(m: R::Mask, a: R, b: R) -> R {
+        R::select(m, a, b)
+    }
+    #[inline(always)]
+    fn zero() -> R {
+        R::splat(0.0)
+    }
+}
+
+impl<R: Real> Blend<R::Mask> for Cx<R> {
+    #[inline(always)]
+    fn blend(m: R::Mask, a: Self, b: Self) -> Self {
+        Cx::new(R::select(m, a.re, b.re), R::select(m, a.im, b.im))
+    }
+    #[inline(always)]
+    fn zero() -> Self {
+        Cx::splat(0.0, 0.0)
+    }
+}
+
+impl<M: Copy, A: Blend<M>, B: Blend<M>> Blend<M> for (A, B) {
+    #[inline(always)]
+    fn blend(m: M, a: Self, b: Self) -> Self {
+        (A::blend(m, a.0, b.0), B::blend(m, a.1, b.1))
+    }
+    #[inline(always)]
+    fn zero() -> Self {
+        (A::zero(), B::zero())
+    }
+}
+
+/// `branch!(m, then, other)`: for any [`Blend`] value, `then` in the lanes where the mask `m` holds and `other`
 /// elsewhere, evaluating each expression only if some lane takes it (for `f32`:
 /// `if m { then } else { other }`).
 ///
@@ -96,14 +142,14 @@ macro_rules! branch {
         let t = if $crate::lane::Mask::any(m) {
             $then
         } else {
-            $crate::lane::Real::splat(0.0)
+            $crate::lane::Blend::zero()
         };
         let o = if $crate::lane::Mask::all(m) {
-            $crate::lane::Real::splat(0.0)
+            $crate::lane::Blend::zero()
         } else {
             $other
         };
-        $crate::lane::Real::select(m, t, o)
+        $crate::lane::Blend::blend(m, t, o)
     }};
 }
 pub(crate) use branch;

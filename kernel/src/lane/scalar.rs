@@ -66,6 +66,10 @@ impl Real for f32 {
         math::floor(self)
     }
     #[inline(always)]
+    fn trunc(self) -> f32 {
+        (self as i32) as f32
+    }
+    #[inline(always)]
     fn sqrt(self) -> f32 {
         math::sqrt(self)
     }

@@ -7,7 +7,8 @@
 //! recursion). The coefficients come from `kernel/gen/math_consts.py`. Accuracy against
 //! mpmath is measured by `kernel/tests/faddeeva.rs`.
 
-use super::complex::{C32, cmul_i, cscale};
+use super::complex::C32;
+use crate::lane::{Cx, Real, branch};
 
 const L: f32 = 4.756828460010884;
 const COEFFS: [f32; 32] = [
@@ -46,56 +47,76 @@ const COEFFS: [f32; 32] = [
 ];
 
 /// `1/z` by Smith's algorithm (no overflow or premature underflow for large |z|).
-#[inline]
-fn crecip(z: C32) -> C32 {
-    if super::abs(z.re) >= super::abs(z.im) {
-        let r = z.im / z.re;
-        let d = z.re + z.im * r;
-        C32::new(1.0 / d, -r / d)
-    } else {
-        let r = z.re / z.im;
-        let d = z.re * r + z.im;
-        C32::new(r / d, -1.0 / d)
-    }
+#[inline(always)]
+fn crecip<R: Real>(z: Cx<R>) -> Cx<R> {
+    let one = R::splat(1.0);
+    branch!(
+        z.re.abs().ge(z.im.abs()),
+        {
+            let r = z.im / z.re;
+            let d = z.re + z.im * r;
+            Cx::new(one / d, -r / d)
+        },
+        {
+            let r = z.re / z.im;
+            let d = z.re * r + z.im;
+            Cx::new(r / d, -one / d)
+        }
+    )
 }
 
 /// Faddeeva function `w(z)` for `Im z ≥ 0` (for `Im z < 0` the argument is reflected to the
 /// real axis' upper side; callers in this crate only pass `Im z ≥ 0`). |w| ≤ 1 there.
 #[inline]
 pub fn faddeeva(z: C32) -> C32 {
-    faddeeva_lanes([z])[0]
+    faddeeva_chains([Cx::from(z)])[0].into()
 }
 
-/// `w(z)` for `N` independent arguments at once: the `N` Horner chains advance in the same
-/// loop, so their latencies overlap (and LLVM may pack the lanes into vector registers).
-/// The same formula as [`faddeeva`], which is this with `N = 1`.
-#[inline]
-pub fn faddeeva_lanes<const N: usize>(z: [C32; N]) -> [C32; N] {
-    let mut q = [C32::new(0.0, 0.0); N];
-    let mut big_z = [C32::new(0.0, 0.0); N];
-    let mut p = [C32::new(COEFFS[0], 0.0); N];
+/// [`faddeeva`] for any [`Real`].
+#[inline(always)]
+pub fn faddeeva_lanes<R: Real>(z: Cx<R>) -> Cx<R> {
+    faddeeva_chains([z])[0]
+}
+
+/// `(w(a), w(b))`: two Horner chains advanced in the same loop, so that their latencies
+/// overlap.
+#[inline(always)]
+pub fn faddeeva_pair<R: Real>(a: Cx<R>, b: Cx<R>) -> (Cx<R>, Cx<R>) {
+    let w = faddeeva_chains([a, b]);
+    (w[0], w[1])
+}
+
+/// `w(z)` for `N` independent arguments at once: the one formula behind [`faddeeva`],
+/// [`faddeeva_lanes`] and [`faddeeva_pair`].
+#[inline(always)]
+fn faddeeva_chains<R: Real, const N: usize>(z: [Cx<R>; N]) -> [Cx<R>; N] {
+    let c = R::splat;
+    let zero = Cx::splat(0.0, 0.0);
+    let mut q = [zero; N];
+    let mut big_z = [zero; N];
+    let mut p = [Cx::splat(COEFFS[0], 0.0); N];
     let mut l = 0;
     while l < N {
-        let zl = C32::new(z[l].re, super::max(z[l].im, 0.0));
-        let iz = cmul_i(zl);
+        let zl = Cx::new(z[l].re, super::max(z[l].im, c(0.0)));
+        let iz = zl.mul_i();
         // q = 1/(L − iz); |L − iz| ≥ L so q never blows up, and q² underflows benignly.
-        q[l] = crecip(C32::new(L - iz.re, -iz.im));
-        big_z[l] = C32::new(L + iz.re, iz.im) * q[l];
+        q[l] = crecip(Cx::new(c(L) - iz.re, -iz.im));
+        big_z[l] = Cx::new(c(L) + iz.re, iz.im) * q[l];
         l += 1;
     }
     let mut k = 1;
     while k < 32 {
         let mut l = 0;
         while l < N {
-            p[l] = p[l] * big_z[l] + C32::new(COEFFS[k], 0.0);
+            p[l] = p[l] * big_z[l] + Cx::splat(COEFFS[k], 0.0);
             l += 1;
         }
         k += 1;
     }
-    let mut out = [C32::new(0.0, 0.0); N];
+    let mut out = [zero; N];
     let mut l = 0;
     while l < N {
-        out[l] = cscale(p[l] * q[l] * q[l], 2.0) + cscale(q[l], super::FRAC_1_SQRT_PI);
+        out[l] = (p[l] * q[l] * q[l]).scale(c(2.0)) + q[l].scale(c(super::FRAC_1_SQRT_PI));
         l += 1;
     }
     out

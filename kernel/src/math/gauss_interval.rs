@@ -13,26 +13,27 @@
 //! Short intervals (where the difference of two nearly equal `erf` values would cancel) are
 //! integrated directly by 8-point Gauss–Legendre instead.
 
-use super::complex::{C32, cscale};
-use super::faddeeva::{faddeeva, faddeeva_lanes};
+use super::complex::C32;
+use super::faddeeva::{faddeeva, faddeeva_lanes, faddeeva_pair};
 use super::quadrature::{GL8_W as GL_W, GL8_X as GL_X};
-use super::trig_pi::cis_pi;
+use super::trig_pi::cis_pi_lanes;
+use crate::lane::{Blend, Cx, Mask, Real, branch};
 
 /// The Faddeeva argument `s(−y + ix)` of the endpoint `z = x + iy`, with `s = sign(x)` so
 /// that it lies in the upper half plane. The endpoint's term is then
 /// `e^{−x²} e^{−2ixy} w(·)`, with the phase `2xy` formed from the unscaled inputs by the
 /// caller (one rounding instead of three).
-#[inline]
-fn endpoint_arg(x: f32, y: f32) -> C32 {
+#[inline(always)]
+fn endpoint_arg<R: Real>(x: R, y: R) -> Cx<R> {
     let s = super::sign(x);
-    C32::new(-s * y, s * x)
+    Cx::new(-s * y, s * x)
 }
 
 /// A rough lower bound of `|e^{−x²} w(−y + ix)|` (|w| decays like `1/(√π |z|)`), used only
 /// to decide which terms are too small to matter.
-#[inline]
-fn term_scale(g: f32, x: f32, y: f32) -> f32 {
-    g * super::FRAC_1_SQRT_PI / (1.0 + super::abs(x) + super::abs(y))
+#[inline(always)]
+fn term_scale<R: Real>(g: R, x: R, y: R) -> R {
+    g * R::splat(super::FRAC_1_SQRT_PI) / (R::splat(1.0) + x.abs() + y.abs())
 }
 
 /// Terms below this fraction of the largest one are skipped (no Faddeeva call): their
@@ -63,30 +64,43 @@ pub fn gauss_fourier_interval(a: f32, b: f32, sigma: f32, nu: f32) -> C32 {
 /// rounding of `m ± h` (a 0.022 µm segment 27 µm along: 1e-4 relative, ten times the
 /// conditioning; issue #20), and the short-interval quadrature uses `m` and `h` directly.
 pub fn gauss_fourier_centered(mid: f32, half: f32, sigma: f32, nu: f32) -> C32 {
-    if !(half > 0.0) || !(sigma > 0.0) {
-        return C32::new(0.0, 0.0);
-    }
-    let len = 2.0 * half;
-    if len <= 0.5 * sigma && super::abs(nu) * len <= 0.5 {
-        return gauss_legendre(mid, half, sigma, nu);
-    }
+    gauss_fourier_centered_lanes(mid, half, sigma, nu).into()
+}
+
+/// [`gauss_fourier_centered`] for any [`Real`] (the one formula).
+#[inline(always)]
+pub fn gauss_fourier_centered_lanes<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
+    let c = R::splat;
+    let len = c(2.0) * half;
+    branch!(
+        half.gt(c(0.0)) & sigma.gt(c(0.0)),
+        branch!(
+            len.le(c(0.5) * sigma) & (nu.abs() * len).le(c(0.5)),
+            gauss_legendre(mid, half, sigma, nu),
+            faddeeva_form(mid, half, sigma, nu)
+        ),
+        Cx::splat(0.0, 0.0)
+    )
+}
+
+/// The closed form through the Faddeeva function at the two ends (the module docs).
+#[inline(always)]
+fn faddeeva_form<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
+    let c = R::splat;
     let (a, b) = (mid - half, mid + half);
-    let k = 1.0 / (super::SQRT_2 * sigma);
-    let y = super::SQRT_2 * super::PI * sigma * nu;
+    let k = c(1.0) / (c(super::SQRT_2) * sigma);
+    let y = c(super::SQRT_2 * super::PI) * sigma * nu;
     let (xa, xb) = (a * k, b * k);
-    let (ga, gb) = (super::exp(-xa * xa), super::exp(-xb * xb));
-    let same_side = (xa >= 0.0) == (xb >= 0.0);
-    let centre = if same_side {
-        0.0
-    } else {
-        2.0 * super::exp(-y * y)
-    };
+    let (ga, gb) = ((-xa * xa).exp(), (-xb * xb).exp());
+    let (a_pos, b_pos) = (xa.ge(c(0.0)), xb.ge(c(0.0)));
+    let same_side = (a_pos & b_pos) | !(a_pos | b_pos);
+    let centre = branch!(same_side, c(0.0), c(2.0) * (-y * y).exp());
     let big = super::max(
         centre,
         super::max(term_scale(ga, xa, y), term_scale(gb, xb, y)),
     );
-    let (need_a, need_b) = (ga > NEGLIGIBLE * big, gb > NEGLIGIBLE * big);
-    let zero = C32::new(0.0, 0.0);
+    let (need_a, need_b) = (ga.gt(c(NEGLIGIBLE) * big), gb.gt(c(NEGLIGIBLE) * big));
+    let zero = Cx::splat(0.0, 0.0);
     let (wa, wb) = endpoint_faddeeva(endpoint_arg(xa, y), endpoint_arg(xb, y), need_a, need_b);
     // The phases e^{−2πiνa}, e^{−2πiνb} of the end terms. On one side of the window's
     // centre the ends may lie far out (|m| ≫ h) and the two terms nearly cancel (the
@@ -94,51 +108,57 @@ pub fn gauss_fourier_centered(mid: f32, half: f32, sigma: f32, nu: f32) -> C32 {
     // put independent errors of ε·2|νm| half-turns into them (1.5e-3 relative at m = 189 µm,
     // ν = 2.4/µm; issue #20). So the centre's phase e^{−2πiνm} is factored out and the ends
     // carry e^{±2πiνh}. Across the centre |a|, |b| ≤ 2h and the plain phases are used.
-    let (pa, pb, common) = if same_side {
+    let ((pa, pb), common) = branch!(
+        same_side,
         (
-            cis_pi(2.0 * nu * half),
-            cis_pi(-2.0 * nu * half),
-            cis_pi(-2.0 * nu * mid),
-        )
-    } else {
+            (
+                cis_pi_lanes(c(2.0) * nu * half),
+                cis_pi_lanes(c(-2.0) * nu * half),
+            ),
+            cis_pi_lanes(c(-2.0) * nu * mid),
+        ),
         (
-            cis_pi(-2.0 * nu * a),
-            cis_pi(-2.0 * nu * b),
-            C32::new(1.0, 0.0),
+            (
+                cis_pi_lanes(c(-2.0) * nu * a),
+                cis_pi_lanes(c(-2.0) * nu * b),
+            ),
+            Cx::splat(1.0, 0.0),
         )
-    };
-    let ea = if need_a { cscale(pa * wa, ga) } else { zero };
-    let eb = if need_b { cscale(pb * wb, gb) } else { zero };
-    let diff = if same_side {
+    );
+    let ea = Cx::blend(need_a, (pa * wa).scale(ga), zero);
+    let eb = Cx::blend(need_b, (pb * wb).scale(gb), zero);
+    let diff = branch!(
+        same_side,
         // Same side: the e^{−y²} parts cancel exactly; take them out analytically.
-        cscale(common * (ea - eb), super::sign(xa))
-    } else {
-        C32::new(centre, 0.0) - ea - eb
-    };
-    cscale(diff, sigma * SQRT_PI_OVER_2)
+        (common * (ea - eb)).scale(super::sign(xa)),
+        Cx::real(centre) - ea - eb
+    );
+    diff.scale(sigma * c(SQRT_PI_OVER_2))
 }
 
 /// `w` at both endpoint arguments, where needed (an unneeded one is multiplied by zero).
 ///
-/// On the CPU only the needed ends are evaluated, both in one two-lane call when both
-/// matter: a long segment whose ends lie outside the window then costs no Faddeeva call.
+/// On the CPU only the ends some lane needs are evaluated, both in one two-chain call when
+/// both matter: a long segment whose ends lie outside the window then costs no Faddeeva
+/// call.
 #[cfg(not(target_arch = "spirv"))]
-#[inline]
-fn endpoint_faddeeva(za: C32, zb: C32, need_a: bool, need_b: bool) -> (C32, C32) {
-    let zero = C32::new(0.0, 0.0);
-    if need_a && need_b {
-        let w = faddeeva_lanes([za, zb]);
-        (w[0], w[1])
-    } else if need_a {
-        (faddeeva(za), zero)
-    } else if need_b {
-        (zero, faddeeva(zb))
-    } else {
-        (zero, zero)
+#[inline(always)]
+fn endpoint_faddeeva<R: Real>(
+    za: Cx<R>,
+    zb: Cx<R>,
+    need_a: R::Mask,
+    need_b: R::Mask,
+) -> (Cx<R>, Cx<R>) {
+    let zero = Cx::splat(0.0, 0.0);
+    match (need_a.any(), need_b.any()) {
+        (true, true) => faddeeva_pair(za, zb),
+        (true, false) => (faddeeva_lanes(za), zero),
+        (false, true) => (zero, faddeeva_lanes(zb)),
+        (false, false) => (zero, zero),
     }
 }
 
-/// `w` at both endpoint arguments, always both in one two-lane call.
+/// `w` at both endpoint arguments, always both in one two-chain call.
 ///
 /// On SPIR-V the Faddeeva loop must not sit in a branch that neighbouring invocations take
 /// differently: with the CPU's choice of calls above, lavapipe (Mesa 22.3) returned values
@@ -146,10 +166,14 @@ fn endpoint_faddeeva(za: C32, zb: C32, need_a: bool, need_b: bool) -> (C32, C32)
 /// off in `backend-spirv/tests/table.rs`, right when evaluated alone). Evaluating both ends
 /// unconditionally keeps the control flow uniform; the callers discard an unneeded end.
 #[cfg(target_arch = "spirv")]
-#[inline]
-fn endpoint_faddeeva(za: C32, zb: C32, _need_a: bool, _need_b: bool) -> (C32, C32) {
-    let w = faddeeva_lanes([za, zb]);
-    (w[0], w[1])
+#[inline(always)]
+fn endpoint_faddeeva<R: Real>(
+    za: Cx<R>,
+    zb: Cx<R>,
+    _need_a: R::Mask,
+    _need_b: R::Mask,
+) -> (Cx<R>, Cx<R>) {
+    faddeeva_pair(za, zb)
 }
 
 /// √(π/2).
@@ -158,22 +182,24 @@ const SQRT_PI_OVER_2: f32 = 1.253_314_137_315_500_3;
 /// Direct 8-point Gauss–Legendre quadrature of the integrand over `[m − h, m + h]` (short
 /// intervals only). The phase at the centre, `e^{−2πiνm}`, is factored out, so the nodes
 /// carry only the small phases `2πν·(±d)` of their offsets.
-fn gauss_legendre(mid: f32, half: f32, sigma: f32, nu: f32) -> C32 {
-    let inv2s2 = 0.5 / (sigma * sigma);
-    let mut acc = C32::new(0.0, 0.0);
+#[inline(always)]
+fn gauss_legendre<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
+    let c = R::splat;
+    let inv2s2 = c(0.5) / (sigma * sigma);
+    let mut acc = Cx::splat(0.0, 0.0);
     let mut i = 0;
     while i < 4 {
-        let d = half * GL_X[i];
+        let d = half * c(GL_X[i]);
         let mut j = 0;
         while j < 2 {
             let (u, off) = if j == 0 { (mid - d, -d) } else { (mid + d, d) };
-            let g = super::exp(-u * u * inv2s2) * GL_W[i];
-            acc += cscale(cis_pi(-2.0 * nu * off), g);
+            let g = (-u * u * inv2s2).exp() * c(GL_W[i]);
+            acc = acc + cis_pi_lanes(c(-2.0) * nu * off).scale(g);
             j += 1;
         }
         i += 1;
     }
-    cscale(cis_pi(-2.0 * nu * mid) * acc, half)
+    (cis_pi_lanes(c(-2.0) * nu * mid) * acc).scale(half)
 }
 
 /// `∫_a^b exp(−u²/(2σ²)) du` (real), e.g. a segment's Gaussian-weighted length.

@@ -19,13 +19,17 @@ pub use atan::{acos, angle_between, asin, atan, atan2};
 pub use bessel::bessel_i0e;
 pub use complex::{C32, cis, cmul_i, cscale, csqrt, csqrt_cx};
 pub use expm1::{expm1, ln1p};
-pub use faddeeva::{faddeeva, faddeeva_lanes};
+pub use faddeeva::{faddeeva, faddeeva_lanes, faddeeva_pair};
 pub use gamma::{gamma, gamma_inv, gamma_p, gamma_p_inv, gamma_q, gamma_q_inv, lgamma};
 pub use gauss_interval::{
-    erf, gauss_fourier_centered, gauss_fourier_interval, gauss_interval, gauss_interval_centered,
+    erf, gauss_fourier_centered, gauss_fourier_centered_lanes, gauss_fourier_interval,
+    gauss_interval, gauss_interval_centered,
 };
 pub use si::{si, si_split, si_velinov, si_velinov_split};
-pub use trig_pi::{cis_pi, one_minus_cis_pi, sin_cos_pi, sinc_pi};
+pub use trig_pi::{
+    cis_pi, cis_pi_lanes, one_minus_cis_pi, one_minus_cis_pi_lanes, sin_cos_pi, sin_cos_pi_lanes,
+    sinc_pi, sinc_pi_lanes,
+};
 
 /// π in `f32`.
 pub const PI: f32 = core::f32::consts::PI;
@@ -161,9 +165,9 @@ pub fn max<R: Real>(a: R, b: R) -> R {
 }
 
 /// +1 for `x >= 0`, −1 otherwise.
-#[inline]
-pub fn sign(x: f32) -> f32 {
-    if x >= 0.0 { 1.0 } else { -1.0 }
+#[inline(always)]
+pub fn sign<R: Real>(x: R) -> R {
+    R::select(x.ge(R::splat(0.0)), R::splat(1.0), R::splat(-1.0))
 }
 
 /// Below this |x| [`sinc`] uses its Taylor series (the error of the three terms is below
@@ -174,11 +178,17 @@ const SINC_SERIES_BELOW: f32 = 1.0e-2;
 /// (no cancellation, exactly 1 at 0).
 #[inline]
 pub fn sinc(x: f32) -> f32 {
-    let ax = abs(x);
-    if ax < SINC_SERIES_BELOW {
-        let x2 = x * x;
-        1.0 - x2 * (1.0 / 6.0) * (1.0 - x2 * (1.0 / 20.0))
+    if abs(x) < SINC_SERIES_BELOW {
+        sinc_series(x)
     } else {
         sin(x) / x
     }
+}
+
+/// [`sinc`]'s Taylor series, for `|x| <` [`SINC_SERIES_BELOW`].
+#[inline(always)]
+fn sinc_series<R: Real>(x: R) -> R {
+    let c = R::splat;
+    let x2 = x * x;
+    c(1.0) - x2 * c(1.0 / 6.0) * (c(1.0) - x2 * c(1.0 / 20.0))
 }

@@ -19,6 +19,8 @@
 //! also serve [`super::sin_cos_pi`] on every build (no feature), where the reduction is
 //! exact and so survives the driver's rewriting.
 
+use crate::lane::Real;
+
 /// 1/ln2_hi (rounding is harmless: it only picks k).
 const FRAC_1_LN2_HI: f32 = 1.442_253_5;
 /// ln 2 split so that `k * LN2_HI` is exact for |k| < 2⁹: `LN2_HI + LN2_LO ≈ ln 2`.
@@ -188,21 +190,24 @@ fn reduce_pio4(x: f32) -> (u32, f32) {
 }
 
 /// sin(r) for |r| ≤ π/4.
-#[inline]
-pub(super) fn sin_poly(r: f32) -> f32 {
+#[inline(always)]
+pub(super) fn sin_poly<R: Real>(r: R) -> R {
+    let c = R::splat;
     let z = r * r;
-    ((-1.951_529_589_1e-4 * z + 8.332_160_873_6e-3) * z - 1.666_665_461_1e-1) * z * r + r
+    ((c(-1.951_529_589_1e-4) * z + c(8.332_160_873_6e-3)) * z - c(1.666_665_461_1e-1)) * z * r + r
 }
 
 /// cos(r) for |r| ≤ π/4.
-#[inline]
-pub(super) fn cos_poly(r: f32) -> f32 {
+#[inline(always)]
+pub(super) fn cos_poly<R: Real>(r: R) -> R {
+    let c = R::splat;
     let z = r * r;
-    ((2.443_315_711_809_948e-5 * z - 1.388_731_625_493_765e-3) * z + 4.166_664_568_298_827e-2)
+    ((c(2.443_315_711_809_948e-5) * z - c(1.388_731_625_493_765e-3)) * z
+        + c(4.166_664_568_298_827e-2))
         * z
         * z
-        - 0.5 * z
-        + 1.0
+        - c(0.5) * z
+        + c(1.0)
 }
 
 /// `floor` from a float→int round trip: exact for |x| < 2²³ (the only range used above),

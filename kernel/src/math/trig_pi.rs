@@ -20,6 +20,7 @@
 
 use super::C32;
 use super::portable::{cos_poly, sin_poly};
+use crate::lane::{Cx, Real, branch};
 
 /// π/2.
 const FRAC_PI_2: f32 = core::f32::consts::FRAC_PI_2;
@@ -31,57 +32,85 @@ const ALL_EVEN: f32 = 16_777_216.0;
 /// `(sin πx, cos πx)` within 2 ULP (measured 1.75) for every finite `x`; NaN for ±∞ and NaN.
 #[inline]
 pub fn sin_cos_pi(x: f32) -> (f32, f32) {
-    let ax = super::abs(x);
-    if !(ax <= f32::MAX) {
-        return (f32::NAN, f32::NAN);
-    }
+    sin_cos_pi_lanes(x)
+}
+
+/// [`sin_cos_pi`] for any [`Real`] (the one formula).
+#[inline(always)]
+pub fn sin_cos_pi_lanes<R: Real>(x: R) -> (R, R) {
+    let c = R::splat;
+    let ax = x.abs();
     // π|x| = j·π/2 + θ with j the nearest quarter turn, |θ| ≤ π/4. For |x| < 2²² both
-    // `2|x| + ½` and `2|x| − j` are exact in f32 (the truncating conversion is a floor,
-    // since the value is positive); beyond, 2|x| is itself an integer.
-    let y = 2.0 * ax;
-    let (j, theta) = if ax < HALF_INTEGERS {
-        let j = (y + 0.5) as u32;
-        (j, (y - j as f32) * FRAC_PI_2)
-    } else if ax < ALL_EVEN {
-        (y as u32, 0.0)
-    } else {
-        (0, 0.0)
-    };
-    let (s, c) = (sin_poly(theta), cos_poly(theta));
-    // Quarter turn j mod 4: odd j swaps sin and cos; sin flips in turns 2, 3 and cos in
-    // turns 1, 2.
-    let odd = j & 1 != 0;
-    let (s, c) = if odd { (c, s) } else { (s, c) };
-    let sin_ax = if j & 2 != 0 { -s } else { s };
-    let cos = if (j + 1) & 2 != 0 { -c } else { c };
-    (if x < 0.0 { -sin_ax } else { sin_ax }, cos)
+    // `2|x| + ½` and `2|x| − j` are exact in f32 (truncation is a floor, since the value is
+    // positive); up to 2²⁴, 2|x| is itself an integer; beyond, a multiple of 4 (j = 0).
+    let y = c(2.0) * ax;
+    let small = ax.lt(c(HALF_INTEGERS));
+    let j = R::select(
+        small,
+        (y + c(0.5)).trunc(),
+        R::select(ax.lt(c(ALL_EVEN)), y, c(0.0)),
+    );
+    let theta = R::select(small, (y - j) * c(FRAC_PI_2), c(0.0));
+    let (s, co) = (sin_poly(theta), cos_poly(theta));
+    // Quarter turn q = j mod 4 (exact: j < 2²⁵): odd q swaps sin and cos; sin flips in
+    // turns 2, 3 and cos in turns 1, 2.
+    let q = j - c(4.0) * (j * c(0.25)).trunc();
+    let (one, two) = (q.eq(c(1.0)), q.eq(c(2.0)));
+    let odd = one | q.eq(c(3.0));
+    let (s, co) = (R::select(odd, co, s), R::select(odd, s, co));
+    let sin_ax = R::select(q.ge(c(2.0)), -s, s);
+    let cos = R::select(one | two, -co, co);
+    let sin = R::select(x.lt(c(0.0)), -sin_ax, sin_ax);
+    let finite = ax.le(c(f32::MAX));
+    (
+        R::select(finite, sin, c(f32::NAN)),
+        R::select(finite, cos, c(f32::NAN)),
+    )
 }
 
 /// `e^{iπx}`.
 #[inline]
 pub fn cis_pi(x: f32) -> C32 {
-    let (s, c) = sin_cos_pi(x);
-    C32::new(c, s)
+    cis_pi_lanes(x).into()
+}
+
+/// [`cis_pi`] for any [`Real`].
+#[inline(always)]
+pub fn cis_pi_lanes<R: Real>(x: R) -> Cx<R> {
+    let (s, c) = sin_cos_pi_lanes(x);
+    Cx::new(c, s)
 }
 
 /// `1 − e^{iπx} = −2i sin(πx/2) e^{iπx/2}`: full relative accuracy near every zero
 /// (`x` near an even integer), where the plain difference cancels.
 #[inline]
 pub fn one_minus_cis_pi(x: f32) -> C32 {
-    let (s, c) = sin_cos_pi(0.5 * x);
+    one_minus_cis_pi_lanes(x).into()
+}
+
+/// [`one_minus_cis_pi`] for any [`Real`].
+#[inline(always)]
+pub fn one_minus_cis_pi_lanes<R: Real>(x: R) -> Cx<R> {
+    let (s, c) = sin_cos_pi_lanes(R::splat(0.5) * x);
     // −2i s (c + i s) = 2s² − 2i s c
-    C32::new(2.0 * s * s, -2.0 * s * c)
+    Cx::new(R::splat(2.0) * s * s, R::splat(-2.0) * s * c)
 }
 
 /// `sin(πx)/(πx)` (the normalised sinc), exactly 1 at 0 and accurate near its zeros.
 #[inline]
 pub fn sinc_pi(x: f32) -> f32 {
-    let t = super::PI * x;
-    if super::abs(t) < super::SINC_SERIES_BELOW {
-        super::sinc(t)
-    } else {
-        sin_cos_pi(x).0 / t
-    }
+    sinc_pi_lanes(x)
+}
+
+/// [`sinc_pi`] for any [`Real`].
+#[inline(always)]
+pub fn sinc_pi_lanes<R: Real>(x: R) -> R {
+    let t = R::splat(super::PI) * x;
+    branch!(
+        t.abs().lt(R::splat(super::SINC_SERIES_BELOW)),
+        super::sinc_series(t),
+        sin_cos_pi_lanes(x).0 / t
+    )
 }
 
 #[cfg(test)]

@@ -16,6 +16,7 @@
 //! (unlike a compensated sum). The sum stays exact while `|Σ hi| < 128 B(0)`, far beyond any
 //! physical coverage; past that it degrades to an ordinary f32 sum.
 
+use crate::lane::{Cx, Real};
 use crate::math::{self, C32};
 
 /// `g / B(0)` (up to the power of two below `B(0)`): 2⁻¹⁶.
@@ -24,50 +25,52 @@ const GRID_SCALE: f32 = 1.0 / 65_536.0;
 const GRID_MIN: f32 = 7.888_609e-31; // 2⁻¹⁰⁰
 const GRID_MAX: f32 = 1.267_650_6e30; // 2¹⁰⁰
 
-/// `S = Σ S_k` as an exact grid part and a small remainder.
+/// `S = Σ S_k` as an exact grid part and a small remainder, in one or more lanes (each
+/// lane its own sum; the grid is shared).
 #[derive(Clone, Copy, Debug)]
-pub struct CoherentSum {
-    hi: C32,
-    lo: C32,
-    grid: f32,
-    inv_grid: f32,
+pub struct CoherentSum<R = f32> {
+    hi: Cx<R>,
+    lo: Cx<R>,
+    grid: R,
+    inv_grid: R,
 }
 
-impl CoherentSum {
+impl<R: Real> CoherentSum<R> {
     /// An empty sum whose terms are of the order of `scale` (the base response's peak).
     #[inline]
-    pub fn new(scale: f32) -> CoherentSum {
+    pub fn new(scale: f32) -> Self {
         // The largest power of two ≤ |scale| (exponent bits only), then 2⁻¹⁶ of it.
         let pow2 = f32::from_bits(math::abs(scale).to_bits() & 0x7f80_0000);
         let grid = math::clamp(pow2 * GRID_SCALE, GRID_MIN, GRID_MAX);
         CoherentSum {
-            hi: C32::new(0.0, 0.0),
-            lo: C32::new(0.0, 0.0),
-            grid,
-            inv_grid: 1.0 / grid,
+            hi: Cx::splat(0.0, 0.0),
+            lo: Cx::splat(0.0, 0.0),
+            grid: R::splat(grid),
+            inv_grid: R::splat(1.0 / grid),
         }
     }
 
     /// Adds one term.
-    #[inline]
-    pub fn add(&mut self, z: C32) {
+    #[inline(always)]
+    pub fn add(&mut self, z: impl Into<Cx<R>>) {
+        let z = z.into();
         let (re_hi, re_lo) = self.split(z.re);
         let (im_hi, im_lo) = self.split(z.im);
-        self.hi += C32::new(re_hi, im_hi);
-        self.lo += C32::new(re_lo, im_lo);
+        self.hi = self.hi + Cx::new(re_hi, im_hi);
+        self.lo = self.lo + Cx::new(re_lo, im_lo);
     }
 
     /// `S`, rounded once.
-    #[inline]
-    pub fn total(&self) -> C32 {
+    #[inline(always)]
+    pub fn total_lanes(&self) -> Cx<R> {
         self.hi + self.lo
     }
 
     /// `b − S` for a real `b` (the base response), rounded once at the size of the result.
-    #[inline]
-    pub fn subtracted_from(&self, b: f32) -> C32 {
+    #[inline(always)]
+    pub fn subtracted_from_lanes(&self, b: R) -> Cx<R> {
         let (b_hi, b_lo) = self.split(b);
-        C32::new(
+        Cx::new(
             (b_hi - self.hi.re) + (b_lo - self.lo.re),
             -(self.hi.im + self.lo.im),
         )
@@ -78,11 +81,26 @@ impl CoherentSum {
     /// the difference of `x` and its own truncation), so contraction changes nothing. The
     /// clamp keeps the conversion defined for absurd terms (and maps NaN to a finite `hi`,
     /// leaving the NaN in `lo`).
-    #[inline]
-    fn split(&self, x: f32) -> (f32, f32) {
-        let v = math::clamp(x * self.inv_grid, -TRUNC_LIMIT, TRUNC_LIMIT);
-        let hi = (v as i32) as f32 * self.grid;
+    #[inline(always)]
+    fn split(&self, x: R) -> (R, R) {
+        let t = R::splat(TRUNC_LIMIT);
+        let v = math::clamp(x * self.inv_grid, -t, t);
+        let hi = v.trunc() * self.grid;
         (hi, x - hi)
+    }
+}
+
+impl CoherentSum {
+    /// `S`, rounded once.
+    #[inline]
+    pub fn total(&self) -> C32 {
+        self.total_lanes().into()
+    }
+
+    /// `b − S` for a real `b` (the base response), rounded once at the size of the result.
+    #[inline]
+    pub fn subtracted_from(&self, b: f32) -> C32 {
+        self.subtracted_from_lanes(b).into()
     }
 }
 

@@ -16,6 +16,7 @@
 //! [`math::sin_cos_pi`] and friends, whose argument reduction is exact: a groove whose depth
 //! phase is near a whole number of waves (`|1 − e^{iκ}|` small) keeps its relative accuracy.
 
+use crate::lane::{Cx, Real, branch};
 use crate::math::{self, C32};
 
 gpu_enum! {
@@ -54,7 +55,7 @@ impl DepthTerm {
 /// Mask transform `M(ξ₂) = W sinc(πWξ₂)` (Werner Eq. 14/26).
 #[inline]
 pub fn mask_transform(width: f32, xi2: f32) -> f32 {
-    width * math::sinc_pi(width * xi2)
+    mask_transform_pi(width, width * xi2)
 }
 
 /// Groove transform `P(ξ₂)` for the given profile (Werner Eqs. 27–31, corrected).
@@ -68,29 +69,27 @@ pub fn profile_transform(
     xi2: f32,
 ) -> C32 {
     // β/π and κ/π.
-    profile_transform_pi(profile, width, width * xi2, depth * half_turns_per_um)
+    profile_transform_pi(profile, width, width * xi2, depth * half_turns_per_um).into()
 }
 
 /// `M` from `β/π = Wξ₂`.
-#[inline]
-fn mask_transform_pi(width: f32, beta: f32) -> f32 {
-    width * math::sinc_pi(beta)
+#[inline(always)]
+fn mask_transform_pi<R: Real>(width: R, beta: R) -> R {
+    width * math::sinc_pi_lanes(beta)
 }
 
 /// [`profile_transform`] from `β/π = Wξ₂` and `κ/π`.
-fn profile_transform_pi(profile: Profile, width: f32, beta: f32, kappa: f32) -> C32 {
+#[inline(always)]
+fn profile_transform_pi<R: Real>(profile: Profile, width: R, beta: R, kappa: R) -> Cx<R> {
+    let c = R::splat;
     match profile {
-        Profile::Rect => math::cscale(math::cis_pi(kappa), width * math::sinc_pi(beta)),
+        Profile::Rect => math::cis_pi_lanes(kappa).scale(width * math::sinc_pi_lanes(beta)),
         Profile::Triangle => {
-            let a = math::cscale(
-                math::cis_pi(0.5 * beta),
-                math::sinc_pi(0.5 * (beta - kappa)),
-            );
-            let b = math::cscale(
-                math::cis_pi(-0.5 * beta),
-                math::sinc_pi(0.5 * (beta + kappa)),
-            );
-            math::cscale(math::cis_pi(0.5 * kappa) * (a + b), 0.5 * width)
+            let a = math::cis_pi_lanes(c(0.5) * beta)
+                .scale(math::sinc_pi_lanes(c(0.5) * (beta - kappa)));
+            let b = math::cis_pi_lanes(c(-0.5) * beta)
+                .scale(math::sinc_pi_lanes(c(0.5) * (beta + kappa)));
+            (math::cis_pi_lanes(c(0.5) * kappa) * (a + b)).scale(c(0.5) * width)
         }
     }
 }
@@ -106,14 +105,24 @@ pub fn mask_minus_profile(
     half_turns_per_um: f32,
     xi2: f32,
 ) -> C32 {
+    mask_minus_profile_lanes(profile, width, depth, half_turns_per_um, xi2).into()
+}
+
+/// [`mask_minus_profile`] for any [`Real`] (the one formula).
+#[inline(always)]
+pub fn mask_minus_profile_lanes<R: Real>(
+    profile: Profile,
+    width: R,
+    depth: R,
+    half_turns_per_um: R,
+    xi2: R,
+) -> Cx<R> {
+    let kappa = depth * half_turns_per_um;
     match profile {
         Profile::Rect => {
-            let kappa = depth * half_turns_per_um;
-            math::cscale(math::one_minus_cis_pi(kappa), mask_transform(width, xi2))
+            math::one_minus_cis_pi_lanes(kappa).scale(mask_transform_pi(width, width * xi2))
         }
-        Profile::Triangle => {
-            triangle_mask_minus_profile(width, width * xi2, depth * half_turns_per_um)
-        }
+        Profile::Triangle => triangle_lanes(width, width * xi2, kappa),
     }
 }
 
@@ -143,42 +152,54 @@ const TRI_SERIES_BELOW: f32 = 0.5;
 /// `β = ±κ` with `|κ| ≥ π/4`, where `|M − P| ≈ |P| ≈ W/2` does not cancel, is the plain
 /// difference used.
 pub fn triangle_mask_minus_profile(width: f32, beta: f32, kappa: f32) -> C32 {
-    let (ab, ak) = (math::abs(beta), math::abs(kappa));
+    triangle_lanes(width, beta, kappa).into()
+}
+
+/// [`triangle_mask_minus_profile`] for any [`Real`].
+#[inline(always)]
+fn triangle_lanes<R: Real>(width: R, beta: R, kappa: R) -> Cx<R> {
+    let c = R::splat;
+    let (ab, ak) = (beta.abs(), kappa.abs());
     let big = math::max(ab, ak);
-    if big > TRI_SERIES_BELOW && math::abs(ab - ak) < TRI_NEAR_POLE {
-        return C32::new(mask_transform_pi(width, beta), 0.0)
-            - profile_transform_pi(Profile::Triangle, width, beta, kappa);
-    }
-    let im = 0.5
-        * math::PI
-        * kappa
-        * math::sinc_pi(0.5 * (beta + kappa))
-        * math::sinc_pi(0.5 * (beta - kappa));
-    let re = if big <= TRI_SERIES_BELOW {
-        let (x, y) = (
-            (math::PI * beta) * (math::PI * beta),
-            (math::PI * kappa) * (math::PI * kappa),
-        );
-        // Σ_{n=1}^{8} c_n h_{n−1}(x, y), h_k = x h_{k−1} + y^k; x, y ≤ π²/4: the first
-        // omitted term is below 1e-12 of the sum (which is ≥ 1/6 − π²/240).
-        let mut h = 1.0;
-        let mut yk = 1.0;
-        let mut sum = 0.0;
-        let mut n = 0;
-        while n < TRI_SERIES.len() {
-            if n > 0 {
-                yk *= y;
-                h = x * h + yk;
-            }
-            sum += TRI_SERIES[n] * h;
-            n += 1;
+    branch!(
+        big.gt(c(TRI_SERIES_BELOW)) & (ab - ak).abs().lt(c(TRI_NEAR_POLE)),
+        Cx::real(mask_transform_pi(width, beta))
+            - profile_transform_pi(Profile::Triangle, width, beta, kappa),
+        {
+            let im = c(0.5)
+                * c(math::PI)
+                * kappa
+                * math::sinc_pi_lanes(c(0.5) * (beta + kappa))
+                * math::sinc_pi_lanes(c(0.5) * (beta - kappa));
+            let re = branch!(
+                big.le(c(TRI_SERIES_BELOW)),
+                {
+                    let (x, y) = (
+                        (c(math::PI) * beta) * (c(math::PI) * beta),
+                        (c(math::PI) * kappa) * (c(math::PI) * kappa),
+                    );
+                    // Σ_{n=1}^{8} c_n h_{n−1}(x, y), h_k = x h_{k−1} + y^k; x, y ≤ π²/4: the
+                    // first omitted term is below 1e-12 of the sum (which is ≥ 1/6 − π²/240).
+                    let mut h = c(1.0);
+                    let mut yk = c(1.0);
+                    let mut sum = c(0.0);
+                    let mut n = 0;
+                    while n < TRI_SERIES.len() {
+                        if n > 0 {
+                            yk = yk * y;
+                            h = x * h + yk;
+                        }
+                        sum = sum + c(TRI_SERIES[n]) * h;
+                        n += 1;
+                    }
+                    y * sum
+                },
+                kappa * kappa * (math::sinc_pi_lanes(kappa) - math::sinc_pi_lanes(beta))
+                    / ((beta - kappa) * (beta + kappa))
+            );
+            Cx::new(re, -im).scale(width)
         }
-        y * sum
-    } else {
-        kappa * kappa * (math::sinc_pi(kappa) - math::sinc_pi(beta))
-            / ((beta - kappa) * (beta + kappa))
-    };
-    math::cscale(C32::new(re, -im), width)
+    )
 }
 
 /// `(−1)^{n+1}/(2n+1)!`, `n = 1 … 8`.
@@ -268,7 +289,7 @@ mod tests {
         for beta in [-4.0_f32, -1.3, 0.4, 0.9, 2.6, 5.5] {
             for kappa in [0.8_f32, 1.7, 3.3] {
                 let plain = C32::new(mask_transform_pi(1.0, beta), 0.0)
-                    - profile_transform_pi(Profile::Triangle, 1.0, beta, kappa);
+                    - C32::from(profile_transform_pi(Profile::Triangle, 1.0, beta, kappa));
                 let ours = triangle_mask_minus_profile(1.0, beta, kappa);
                 let d = (ours - plain).norm() / plain.norm();
                 assert!(d < 2.0e-6, "β/π {beta}, κ/π {kappa}: {d:e}");

@@ -1,5 +1,7 @@
 //! The scratch record shared by CPU and GPU, and its local frame (Werner §3.1, Eq. 13).
 
+use super::spatial_phase::dot;
+use crate::lane::Real;
 use crate::segment2d::Segment2;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
@@ -120,7 +122,16 @@ impl SegmentFrame {
     /// `(s_t, s_b)`: the centre relative to `x0` in tangent/bitangent components.
     #[inline]
     pub fn offset_from(&self, x0: Vec2) -> (f32, f32) {
-        let r0 = self.center - x0;
-        (r0.dot(self.tangent), r0.dot(self.bitangent))
+        self.offset_from_lanes([x0.x, x0.y])
+    }
+
+    /// [`SegmentFrame::offset_from`] for one `x0` per lane.
+    #[inline(always)]
+    pub fn offset_from_lanes<R: Real>(&self, x0: [R; 2]) -> (R, R) {
+        let r0 = [
+            R::splat(self.center.x) - x0[0],
+            R::splat(self.center.y) - x0[1],
+        ];
+        (dot(r0, self.tangent), dot(r0, self.bitangent))
     }
 }

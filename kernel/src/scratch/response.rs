@@ -2,10 +2,13 @@
 //! and the scratch area density ρc (Werner §5, Velinov Eq. 17 corrected).
 
 use super::coherent_sum::CoherentSum;
-use super::profile::{Profile, mask_minus_profile};
+use super::profile::{Profile, mask_minus_profile_lanes};
 use super::record::{Scratch, SegmentFrame};
 use super::set::{NearCursor, ScratchSet};
-use super::spatial_phase::{EtaMode, eta, xi_local};
+use super::spatial_phase::{EtaMode, eta_lanes, xi_local_lanes};
+use crate::lane::{Cx, Real};
+#[cfg(not(target_arch = "spirv"))]
+use crate::lane::{LaneMask, Lanes};
 use crate::math::{self, C32};
 use glam::Vec2;
 
@@ -17,35 +20,85 @@ pub const CUTOFF_SIGMAS: f32 = 6.0;
 /// the Gaussian coherence window.
 #[inline]
 pub fn base_response(xi: Vec2, sigma: f32) -> f32 {
-    let s2 = sigma * sigma;
-    math::TAU * s2 * math::exp(-2.0 * math::PI * math::PI * s2 * xi.length_squared())
+    base_response_lanes([xi.x, xi.y], sigma)
 }
 
-/// Everything the models need from the scratches around one shading point, gathered in a
-/// single pass.
+/// [`base_response`] for one `ξ` per lane.
+#[inline(always)]
+pub fn base_response_lanes<R: Real>(xi: [R; 2], sigma: f32) -> R {
+    let s2 = R::splat(sigma * sigma);
+    R::splat(math::TAU)
+        * s2
+        * (R::splat(-2.0 * math::PI * math::PI) * s2 * (xi[0] * xi[0] + xi[1] * xi[1])).exp()
+}
+
+/// Everything the models need from the scratches around one shading point (per lane),
+/// gathered in a single pass.
 #[derive(Clone, Copy, Debug)]
-pub struct ScratchTerms {
+pub struct ScratchTerms<R = f32> {
     /// Coherent scratch response `S = Σ (M_k − P_k) η_k` (Werner Eq. 17), µm², summed
     /// exactly (use [`CoherentSum::subtracted_from`] for `B − S`).
-    pub coherent: CoherentSum,
+    pub coherent: CoherentSum<R>,
     /// Incoherent sum `Σ |S_k|²` (Velinov Eq. 7), µm⁴.
-    pub incoherent: f32,
+    pub incoherent: R,
     /// Scratch area density ρc at `x0` (dimensionless; 1 for a fully scratched window);
     /// 0 unless [`ResponseInputs::area_density`] asked for it.
-    pub area_density: f32,
+    pub area_density: R,
 }
 
-/// Per-query inputs of the scratch response.
+impl<R: Real> ScratchTerms<R> {
+    /// No scratch yet, for a window of the given σ.
+    #[inline]
+    pub fn empty(sigma: f32) -> Self {
+        ScratchTerms {
+            coherent: CoherentSum::new(base_response(Vec2::ZERO, sigma)),
+            incoherent: R::splat(0.0),
+            area_density: R::splat(0.0),
+        }
+    }
+
+    /// Adds scratch `s` (with its `frame`) in the lanes of `take`: its term `S_k` to the
+    /// sums and, when `q` asks for it, its share of ρc. The one accumulation step of the
+    /// scalar walk and of the lane batches.
+    #[inline(always)]
+    pub fn accumulate(
+        &mut self,
+        s: &Scratch,
+        frame: &SegmentFrame,
+        q: &ResponseInputs<R>,
+        take: R::Mask,
+    ) {
+        let zero = R::splat(0.0);
+        let sk = scratch_term_lanes(
+            s,
+            frame,
+            q.x0,
+            q.xi,
+            q.depth_half_turns_per_um,
+            q.sigma,
+            q.eta,
+        );
+        let sk = Cx::new(R::select(take, sk.re, zero), R::select(take, sk.im, zero));
+        self.coherent.add(sk);
+        self.incoherent = self.incoherent + sk.norm_sqr();
+        if q.area_density {
+            let rho = area_density_lanes(frame, s.width, q.x0, q.sigma);
+            self.area_density = self.area_density + R::select(take, rho, zero);
+        }
+    }
+}
+
+/// Per-query inputs of the scratch response (one query per lane).
 #[derive(Clone, Copy, Debug)]
-pub struct ResponseInputs {
+pub struct ResponseInputs<R = f32> {
     /// Shading point (µm).
-    pub x0: Vec2,
+    pub x0: [R; 2],
     /// `(wi + wo)_xy / λ` (1/µm).
-    pub xi: Vec2,
+    pub xi: [R; 2],
     /// The depth phase in half-turns per µm of groove depth, `2γ/λ` (1/µm), with the
     /// effective `γ` of [`super::DepthTerm::gamma`] (see `units::depth_half_turns_per_um`).
-    pub depth_half_turns_per_um: f32,
-    /// Coherence σ (µm).
+    pub depth_half_turns_per_um: R,
+    /// Coherence σ (µm), shared by the lanes.
     pub sigma: f32,
     /// Finite or infinite spatial phase.
     pub eta: EtaMode,
@@ -55,32 +108,87 @@ pub struct ResponseInputs {
 
 /// Sums the scratch terms over every scratch within [`CUTOFF_SIGMAS`]·σ of `x0`.
 pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTerms {
-    let mut terms = ScratchTerms {
-        coherent: CoherentSum::new(base_response(Vec2::ZERO, q.sigma)),
-        incoherent: 0.0,
-        area_density: 0.0,
-    };
-    let sigma = q.sigma;
+    let mut terms = ScratchTerms::empty(q.sigma);
+    let x0 = Vec2::from_array(q.x0);
     let mut cursor = NearCursor::default();
-    while let Some(s) = set.next_near(&mut cursor, q.x0, CUTOFF_SIGMAS * sigma) {
+    while let Some(s) = set.next_near(&mut cursor, x0, CUTOFF_SIGMAS * q.sigma) {
         if let Some(frame) = s.frame() {
-            let sk = scratch_term(
-                &s,
-                &frame,
-                q.x0,
-                q.xi,
-                q.depth_half_turns_per_um,
-                sigma,
-                q.eta,
-            );
-            terms.coherent.add(sk);
-            terms.incoherent += sk.norm_sqr();
-            if q.area_density {
-                terms.area_density += area_density_of(&frame, s.width, q.x0, sigma);
-            }
+            terms.accumulate(&s, &frame, q, true);
         }
     }
     terms
+}
+
+/// [`scratch_response`] for `N` queries at once (the SIMD backend's batch; CPU only).
+///
+/// The gather strategy: one walk over the scratches near the circle that holds all `N`
+/// shading points (each lane's disk of radius [`CUTOFF_SIGMAS`]·σ inside it), and each
+/// candidate added in the lanes whose own disk reaches it, by the same distance test as the
+/// scalar walk. The lookup yields the candidates in its fixed order, a lane's own
+/// scratches among them in the order its scalar walk finds them, and a lane skips the
+/// others by adding exact zeros: every lane's sums are those of [`scratch_response`] up to
+/// the lane arithmetic. The batch is fastest when its points are close together (the
+/// caller sorts them); [`LaneUse`] counts how many lanes each candidate served.
+#[cfg(not(target_arch = "spirv"))]
+pub fn scratch_response_batch<S: ScratchSet, const N: usize>(
+    set: &S,
+    q: &ResponseInputs<Lanes<N>>,
+    lane_use: &mut LaneUse,
+) -> ScratchTerms<Lanes<N>> {
+    let mut terms = ScratchTerms::empty(q.sigma);
+    let radius = CUTOFF_SIGMAS * q.sigma;
+    let points: [Vec2; N] = core::array::from_fn(|i| Vec2::new(q.x0[0].0[i], q.x0[1].0[i]));
+    let (lo, hi) = points.iter().fold((points[0], points[0]), |(lo, hi), p| {
+        (lo.min(*p), hi.max(*p))
+    });
+    let centre = 0.5 * (lo + hi);
+    // Every lane's disk inside the union's (with a margin for the rounding of the centre).
+    let spread = points
+        .iter()
+        .fold(0.0_f32, |m, p| m.max(p.distance(centre)));
+    let union = radius + spread * (1.0 + 1.0e-5) + 1.0e-6 * radius;
+    let mut cursor = NearCursor::default();
+    while let Some(s) = set.next_near(&mut cursor, centre, union) {
+        if let Some(frame) = s.frame() {
+            let take = LaneMask(points.map(|p| {
+                if s.distance_to(p) <= radius {
+                    u32::MAX
+                } else {
+                    0
+                }
+            }));
+            let n = take.0.iter().filter(|&&m| m != 0).count();
+            lane_use.candidates += 1;
+            lane_use.lanes += n as u64;
+            if n > 0 {
+                terms.accumulate(&s, &frame, q, take);
+            }
+        }
+    }
+    lane_use.batches += 1;
+    terms
+}
+
+/// How well the lanes of [`scratch_response_batch`] were used: over all candidates, the
+/// share of lanes that needed each one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LaneUse {
+    /// Batches walked.
+    pub batches: u64,
+    /// Candidate scratches evaluated (one lane-wide evaluation each, or none when no lane
+    /// reached it).
+    pub candidates: u64,
+    /// Σ over candidates of the lanes that took it.
+    pub lanes: u64,
+}
+
+impl LaneUse {
+    /// Adds another count.
+    pub fn merge(&mut self, o: &LaneUse) {
+        self.batches += o.batches;
+        self.candidates += o.candidates;
+        self.lanes += o.lanes;
+    }
 }
 
 /// One scratch's term `S_k = (M_k − P_k) η_k` (the summand of Werner Eq. 17), µm².
@@ -94,10 +202,39 @@ pub fn scratch_term(
     sigma: f32,
     eta_mode: EtaMode,
 ) -> C32 {
-    let (_, xi2) = xi_local(frame, xi);
+    scratch_term_lanes(
+        s,
+        frame,
+        [x0.x, x0.y],
+        [xi.x, xi.y],
+        depth_half_turns_per_um,
+        sigma,
+        eta_mode,
+    )
+    .into()
+}
+
+/// [`scratch_term`] for one `x0`, `ξ` and depth phase per lane (the one formula).
+#[inline(always)]
+pub fn scratch_term_lanes<R: Real>(
+    s: &Scratch,
+    frame: &SegmentFrame,
+    x0: [R; 2],
+    xi: [R; 2],
+    depth_half_turns_per_um: R,
+    sigma: f32,
+    eta_mode: EtaMode,
+) -> Cx<R> {
+    let (_, xi2) = xi_local_lanes(frame, xi);
     let profile = Profile::from_u32(s.profile);
-    let m_p = mask_minus_profile(profile, s.width, s.depth, depth_half_turns_per_um, xi2);
-    m_p * eta(eta_mode, frame, x0, xi, sigma)
+    let m_p = mask_minus_profile_lanes(
+        profile,
+        R::splat(s.width),
+        R::splat(s.depth),
+        depth_half_turns_per_um,
+        xi2,
+    );
+    m_p * eta_lanes(eta_mode, frame, x0, xi, sigma)
 }
 
 /// Most wavelengths one [`scratch_response_spectral`] walk serves.
@@ -181,9 +318,17 @@ pub fn scratch_response_spectral<S: ScratchSet>(
 /// One segment's share of ρc: `W ∫ G ds / (2πσ²)`.
 #[inline]
 fn area_density_of(frame: &SegmentFrame, width: f32, x0: Vec2, sigma: f32) -> f32 {
-    let (s_t, s_b) = frame.offset_from(x0);
-    let along = math::gauss_interval_centered(s_t, frame.half_len, sigma);
-    width * math::exp(-0.5 * s_b * s_b / (sigma * sigma)) * along / (math::TAU * sigma * sigma)
+    area_density_lanes(frame, width, [x0.x, x0.y], sigma)
+}
+
+/// [`area_density_of`] for one `x0` per lane.
+#[inline(always)]
+fn area_density_lanes<R: Real>(frame: &SegmentFrame, width: f32, x0: [R; 2], sigma: f32) -> R {
+    let (s_t, s_b) = frame.offset_from_lanes(x0);
+    let c = R::splat;
+    let along = math::gauss_fourier_centered_lanes(s_t, c(frame.half_len), c(sigma), c(0.0)).re;
+    c(width) * (c(-0.5) * s_b * s_b / (c(sigma) * c(sigma))).exp() * along
+        / c(math::TAU * sigma * sigma)
 }
 
 /// Scratch area density ρc(x0) = `(1/(2πσ²)) Σ W_k ∫_k G ds`.

@@ -1,0 +1,237 @@
+//! The SIMD backend's lane path for the scratch models against the scalar backend: Werner,
+//! Werner blended and Velinov (finite and infinite η, Gaussian base) tables evaluated in
+//! sorted batches of 8 lanes that share one walk over their scratches
+//! (`kernel::table::evaluate_batch`), against the scalar kernel one query at a time, in ULP.
+//!
+//! Both run the same source. They differ only where the lanes call the kernel's branch-free
+//! `exp` (`math::portable`, within 2 ULP) instead of libm's; with `--features portable-math`
+//! the scalar seam uses it too and the results must be bit-identical. The gather strategy
+//! itself (a lane adds exact zeros for the candidates outside its own disk) must change
+//! nothing, and the lane-use count must show that sorted batches share their candidates.
+//!
+//! Scratches: 400 random segments over a 300 µm square (both profiles, σ = 10 µm), so
+//! batches meet different scratch sets. Queries: shading points over the square, directions
+//! uniform over the upper hemisphere (one in five near the specular direction, where the
+//! coherent sum cancels), a few below the horizon, one with a non-finite shading point.
+
+use scratchwave_cpu::{Backend, evaluate_table, evaluate_table_counted};
+use scratchwave_host::generate::{HalfLength, ProfileMix, ScratchRecipe, Uniform};
+use scratchwave_host::rng::SplitMix64;
+use scratchwave_kernel::material::{FresnelAngle, Material};
+use scratchwave_kernel::scratch::{DepthTerm, EtaMode, Scratch};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery};
+
+/// Bound on the distance in ULP between lane and scalar results with the default math seam
+/// (libm `exp` in the scalar backend, the kernel's own in the lanes, each within 2 ULP).
+/// Werner's `|B − S|²` cancels where the scratches nearly undo the base reflection and
+/// amplifies the terms' last-bit differences (measured worst: 118 ULP, werner; 40 werner
+/// blended; 12 velinov). With `portable-math`: 0.
+#[cfg(not(feature = "portable-math"))]
+const MAX_ULP: u32 = 160;
+#[cfg(feature = "portable-math")]
+const MAX_ULP: u32 = 0;
+
+/// Bound on the 99th percentile of the distance (measured: 8 ULP).
+#[cfg(not(feature = "portable-math"))]
+const P99_ULP: u32 = 12;
+#[cfg(feature = "portable-math")]
+const P99_ULP: u32 = 0;
+
+/// Values this small in both results count as equal.
+const TINY: f32 = 1.0e-30;
+
+const SIGMA: f32 = 10.0;
+
+fn scratches() -> Vec<Scratch> {
+    ScratchRecipe {
+        count: 400,
+        unit: SIGMA,
+        center: [0.0, 0.0],
+        side: 30.0,
+        outliers: None,
+        half_length: HalfLength::Uniform(Uniform::new(0.2, 6.0)),
+        width: Uniform::new(0.3, 3.0),
+        depth: Uniform::new(0.02, 0.6),
+        profile: ProfileMix::Alternate,
+    }
+    .generate(&mut SplitMix64::new(3))
+}
+
+fn upper(r: &mut SplitMix64) -> [f32; 3] {
+    let z = r.next_f32();
+    let phi = r.next_f32() * std::f32::consts::TAU;
+    let s = (1.0 - z * z).max(0.0).sqrt();
+    [s * phi.cos(), s * phi.sin(), z]
+}
+
+fn queries(n: usize, seed: u64) -> Vec<TableQuery> {
+    let mut r = SplitMix64::new(seed);
+    let mut q: Vec<TableQuery> = (0..n)
+        .map(|i| {
+            let wi = upper(&mut r);
+            let mut wo = upper(&mut r);
+            if i % 5 == 0 {
+                // Near the specular direction.
+                let (dx, dy) = (0.02 * (r.next_f32() - 0.5), 0.02 * (r.next_f32() - 0.5));
+                let (x, y) = (-wi[0] + dx, -wi[1] + dy);
+                wo = [x, y, (1.0 - x * x - y * y).max(0.0).sqrt()];
+            }
+            if i % 97 == 0 {
+                wo[2] = -wo[2];
+            }
+            TableQuery {
+                wi,
+                wo,
+                lambda_nm: 380.0 + 400.0 * r.next_f32(),
+                x: [(r.next_f32() - 0.5) * 320.0, (r.next_f32() - 0.5) * 320.0],
+                material: if i % 2 == 0 {
+                    Material::constant(0.9)
+                } else {
+                    Material::ior(0.2, 3.1, FresnelAngle::ThetaD)
+                },
+                ..TableQuery::default()
+            }
+        })
+        .collect();
+    q[n / 2].x = [f32::NAN, 1.0];
+    q
+}
+
+fn ulps(a: f32, b: f32) -> u32 {
+    if a == b || (a.abs() < TINY && b.abs() < TINY) {
+        return 0;
+    }
+    if a.is_sign_negative() != b.is_sign_negative() || !a.is_finite() || !b.is_finite() {
+        return u32::MAX;
+    }
+    a.to_bits().abs_diff(b.to_bits())
+}
+
+fn cases() -> Vec<(&'static str, TableParams)> {
+    let p = |model: Model, eta: EtaMode, base: u32, depth: DepthTerm| TableParams {
+        model: model as u32,
+        eta: eta as u32,
+        depth_term: depth as u32,
+        base_gaussian: base,
+        sigma_um: SIGMA,
+        ..TableParams::default()
+    };
+    vec![
+        (
+            "werner",
+            p(Model::Werner, EtaMode::Finite, 0, DepthTerm::Exact),
+        ),
+        (
+            "werner_blended",
+            p(
+                Model::WernerBlended,
+                EtaMode::Finite,
+                0,
+                DepthTerm::SmallAngle,
+            ),
+        ),
+        (
+            "velinov finite + base",
+            p(Model::Velinov, EtaMode::Finite, 1, DepthTerm::SmallAngle),
+        ),
+        (
+            "velinov infinite",
+            p(Model::Velinov, EtaMode::Infinite, 0, DepthTerm::Exact),
+        ),
+    ]
+}
+
+#[test]
+fn scratch_models_in_lanes_are_within_a_few_ulp_of_scalar() {
+    let s = scratches();
+    let q = queries(6_000, 5);
+    let mut worst_all = 0;
+    for (name, params) in cases() {
+        let scalar = evaluate_table(Backend::Scalar, &params, &s, &q);
+        let (lanes, used) = evaluate_table_counted(Backend::SimdSingleThread, &params, &s, &q);
+        let nonzero = scalar.iter().filter(|v| **v > 0.0).count();
+        assert!(
+            nonzero > q.len() / 2,
+            "{name}: only {nonzero} values above 0"
+        );
+        let all: Vec<u32> = scalar
+            .iter()
+            .zip(&lanes)
+            .map(|(s, l)| ulps(*s, *l))
+            .collect();
+        let (worst, at) = all.iter().copied().zip(0..).max().unwrap_or((0, 0));
+        let mut sorted = all.clone();
+        sorted.sort_unstable();
+        let pct = |f: f64| sorted[((sorted.len() - 1) as f64 * f) as usize];
+        let exact = all.iter().filter(|&&u| u == 0).count();
+        let utilisation = used.lanes as f64 / (used.candidates.max(1) * 8) as f64;
+        println!(
+            "{name}: identical {exact}/{}, median {}, 99% {}, worst {worst} ULP (query {at}); \
+             {} batches, {:.1} candidates per batch, lane use {:.0} %",
+            all.len(),
+            pct(0.5),
+            pct(0.99),
+            used.batches,
+            used.candidates as f64 / used.batches.max(1) as f64,
+            100.0 * utilisation
+        );
+        assert!(
+            pct(0.99) <= P99_ULP,
+            "{name}: 99th percentile {}",
+            pct(0.99)
+        );
+        assert!(
+            worst <= MAX_ULP,
+            "{name}: query {at} {:?}: lanes {} vs scalar {} ({worst} ULP)",
+            q[at],
+            lanes[at],
+            scalar[at]
+        );
+        assert_eq!(used.batches, q.len().div_ceil(8) as u64);
+        worst_all = worst_all.max(worst);
+    }
+    println!("worst over all models: {worst_all} ULP");
+}
+
+/// Sorting by shading point is what lets a batch share its scratches: on points in input
+/// (random) order the lanes would use a small share of each candidate's evaluation.
+#[test]
+fn sorted_batches_share_their_candidates() {
+    let s = scratches();
+    let q = queries(4_000, 9);
+    let params = cases()[0].1;
+    let (_, used) = evaluate_table_counted(Backend::SimdSingleThread, &params, &s, &q);
+    let utilisation = used.lanes as f64 / (used.candidates * 8) as f64;
+    // 4000 points over 320² µm² with lookup disks of 60 µm radius: eight Z-order neighbours
+    // lie within a few cells of each other, so most lanes of a candidate take it.
+    assert!(utilisation > 0.3, "lane use {utilisation}");
+    // The values do not depend on the batching: the same queries reversed give the same bits.
+    let rev: Vec<TableQuery> = q.iter().rev().copied().collect();
+    let a = evaluate_table(Backend::SimdSingleThread, &params, &s, &q);
+    let mut b = evaluate_table(Backend::SimdSingleThread, &params, &s, &rev);
+    b.reverse();
+    assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()));
+}
+
+/// The run-time dispatch's two paths (AVX2 + FMA where the CPU has them, else the baseline
+/// ISA) give the same bits for the scratch models too.
+#[test]
+fn scratch_lanes_are_bit_identical_with_and_without_avx2() {
+    let s = scratches();
+    let q = queries(3_000, 13);
+    for (name, params) in cases() {
+        let dispatched = evaluate_table(Backend::SimdSingleThread, &params, &s, &q);
+        let baseline = scratchwave_cpu::table::evaluate_table_baseline(&params, &s, &q);
+        let diff = dispatched
+            .iter()
+            .zip(&baseline)
+            .position(|(a, b)| a.to_bits() != b.to_bits());
+        assert!(
+            diff.is_none(),
+            "{name}: query {diff:?}: dispatched {:?} vs baseline {:?} (AVX2 + FMA: {})",
+            diff.map(|i| dispatched[i]),
+            diff.map(|i| baseline[i]),
+            scratchwave_cpu::lanes::avx2_fma()
+        );
+    }
+}
