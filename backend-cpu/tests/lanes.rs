@@ -13,6 +13,9 @@ use scratchwave_host::rng::SplitMix64;
 use scratchwave_kernel::ghs::layers::LayerForm;
 use scratchwave_kernel::ghs::{DiffColor, GhsParams, Layer, presets};
 use scratchwave_kernel::table::TableQuery;
+use ulp::{UlpStats, upper};
+
+mod ulp;
 
 /// Bound on the distance in ULP between lane and scalar results. With the default math seam
 /// the scalar backend's `exp`/`ln` are libm's and the lanes' the kernel's own (both within
@@ -29,17 +32,6 @@ const P99_ULP: u32 = 8;
 #[cfg(feature = "portable-math")]
 const P99_ULP: u32 = 0;
 
-/// Below this both results count as equal when their absolute difference is below it too
-/// (values this small carry no information about the lane arithmetic).
-const TINY: f32 = 1.0e-30;
-
-fn upper(r: &mut SplitMix64) -> [f32; 3] {
-    let z = r.next_f32();
-    let phi = r.next_f32() * std::f32::consts::TAU;
-    let s = (1.0 - z * z).max(0.0).sqrt();
-    [s * phi.cos(), s * phi.sin(), z]
-}
-
 fn queries(n: usize, seed: u64) -> Vec<TableQuery> {
     let mut r = SplitMix64::new(seed);
     (0..n)
@@ -50,16 +42,6 @@ fn queries(n: usize, seed: u64) -> Vec<TableQuery> {
             ..TableQuery::default()
         })
         .collect()
-}
-
-fn ulps(a: f32, b: f32) -> u32 {
-    if a == b || (a.abs() < TINY && b.abs() < TINY) {
-        return 0;
-    }
-    if a.is_sign_negative() != b.is_sign_negative() || !a.is_finite() || !b.is_finite() {
-        return u32::MAX;
-    }
-    a.to_bits().abs_diff(b.to_bits())
 }
 
 #[test]
@@ -107,24 +89,13 @@ fn ghs_in_lanes_is_within_a_few_ulp_of_scalar() {
             nonzero > q.len() / 100,
             "{name}: only {nonzero} values above 0"
         );
-        let (worst, at) = scalar
-            .iter()
-            .zip(&lanes)
-            .map(|(s, l)| ulps(*s, *l))
-            .zip(0..)
-            .max()
-            .unwrap_or((0, 0));
-        let mut all: Vec<u32> = scalar
-            .iter()
-            .zip(&lanes)
-            .map(|(s, l)| ulps(*s, *l))
-            .collect();
-        all.sort_unstable();
-        let pct = |f: f64| all[((all.len() - 1) as f64 * f) as usize];
-        let exact = all.iter().filter(|&&u| u == 0).count();
+        let st = UlpStats::of(&scalar, &lanes);
+        let (worst, at) = st.worst();
+        let pct = |f: f64| st.percentile(f);
+        let exact = st.identical();
         println!(
             "{name}: identical {exact}/{}, median {}, 99% {}, 99.9% {}, worst {worst} ULP (query {at})",
-            all.len(),
+            st.all.len(),
             pct(0.5),
             pct(0.99),
             pct(0.999)

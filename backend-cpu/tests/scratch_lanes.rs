@@ -20,6 +20,9 @@ use scratchwave_host::rng::SplitMix64;
 use scratchwave_kernel::material::{FresnelAngle, Material};
 use scratchwave_kernel::scratch::{DepthTerm, EtaMode, Scratch};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery};
+use ulp::{UlpStats, upper};
+
+mod ulp;
 
 /// Bound on the distance in ULP between lane and scalar results with the default math seam
 /// (libm `exp` in the scalar backend, the kernel's own in the lanes, each within 2 ULP).
@@ -37,9 +40,6 @@ const P99_ULP: u32 = 12;
 #[cfg(feature = "portable-math")]
 const P99_ULP: u32 = 0;
 
-/// Values this small in both results count as equal.
-const TINY: f32 = 1.0e-30;
-
 const SIGMA: f32 = 10.0;
 
 fn scratches() -> Vec<Scratch> {
@@ -55,13 +55,6 @@ fn scratches() -> Vec<Scratch> {
         profile: ProfileMix::Alternate,
     }
     .generate(&mut SplitMix64::new(3))
-}
-
-fn upper(r: &mut SplitMix64) -> [f32; 3] {
-    let z = r.next_f32();
-    let phi = r.next_f32() * std::f32::consts::TAU;
-    let s = (1.0 - z * z).max(0.0).sqrt();
-    [s * phi.cos(), s * phi.sin(), z]
 }
 
 fn queries(n: usize, seed: u64) -> Vec<TableQuery> {
@@ -95,16 +88,6 @@ fn queries(n: usize, seed: u64) -> Vec<TableQuery> {
         .collect();
     q[n / 2].x = [f32::NAN, 1.0];
     q
-}
-
-fn ulps(a: f32, b: f32) -> u32 {
-    if a == b || (a.abs() < TINY && b.abs() < TINY) {
-        return 0;
-    }
-    if a.is_sign_negative() != b.is_sign_negative() || !a.is_finite() || !b.is_finite() {
-        return u32::MAX;
-    }
-    a.to_bits().abs_diff(b.to_bits())
 }
 
 fn cases() -> Vec<(&'static str, TableParams)> {
@@ -154,21 +137,15 @@ fn scratch_models_in_lanes_are_within_a_few_ulp_of_scalar() {
             nonzero > q.len() / 2,
             "{name}: only {nonzero} values above 0"
         );
-        let all: Vec<u32> = scalar
-            .iter()
-            .zip(&lanes)
-            .map(|(s, l)| ulps(*s, *l))
-            .collect();
-        let (worst, at) = all.iter().copied().zip(0..).max().unwrap_or((0, 0));
-        let mut sorted = all.clone();
-        sorted.sort_unstable();
-        let pct = |f: f64| sorted[((sorted.len() - 1) as f64 * f) as usize];
-        let exact = all.iter().filter(|&&u| u == 0).count();
+        let st = UlpStats::of(&scalar, &lanes);
+        let (worst, at) = st.worst();
+        let pct = |f: f64| st.percentile(f);
+        let exact = st.identical();
         let utilisation = used.lanes as f64 / (used.candidates.max(1) * 8) as f64;
         println!(
             "{name}: identical {exact}/{}, median {}, 99% {}, worst {worst} ULP (query {at}); \
              {} batches, {:.1} candidates per batch, lane use {:.0} %",
-            all.len(),
+            st.all.len(),
             pct(0.5),
             pct(0.99),
             used.batches,
