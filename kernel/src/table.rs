@@ -85,7 +85,7 @@ pub fn evaluate<S: ScratchSet>(params: &TableParams, q: &TableQuery, set: &S) ->
     let Some(p) = Prepared::of(params, q) else {
         return 0.0;
     };
-    let inputs = p.response_inputs(params, [p.x0.x, p.x0.y], [p.xi.x, p.xi.y], p.depth);
+    let inputs = Prepared::response_inputs(params, [p.x0.x, p.x0.y], [p.xi.x, p.xi.y], p.depth);
     let terms = scratch_response(set, &inputs);
     model_value(
         Model::from_u32(params.model),
@@ -120,7 +120,7 @@ pub fn evaluate_batch<S: ScratchSet, const N: usize>(
     let p = prepared.map(|p| p.filter(in_lanes).unwrap_or(first));
     let lanes = |f: fn(&Prepared) -> f32| Lanes(p.each_ref().map(f));
     let xi = [lanes(|p| p.xi.x), lanes(|p| p.xi.y)];
-    let inputs = first.response_inputs(
+    let inputs = Prepared::response_inputs(
         params,
         [lanes(|p| p.x0.x), lanes(|p| p.x0.y)],
         xi,
@@ -184,7 +184,6 @@ impl Prepared {
     /// The scratch response's inputs (the lanes' `x0`, `ξ` and depth phase given).
     #[inline(always)]
     fn response_inputs<R: Real>(
-        &self,
         params: &TableParams,
         x0: [R; 2],
         xi: [R; 2],

@@ -6,7 +6,7 @@ use super::profile::{Profile, mask_minus_profile_lanes};
 use super::record::{Scratch, SegmentFrame};
 use super::set::{NearCursor, ScratchSet};
 use super::spatial_phase::{EtaMode, eta_lanes, xi_local_lanes};
-use crate::lane::{Cx, Real};
+use crate::lane::{Blend, Cx, Real};
 #[cfg(not(target_arch = "spirv"))]
 use crate::lane::{LaneMask, Lanes};
 use crate::math::{self, C32};
@@ -78,7 +78,7 @@ impl<R: Real> ScratchTerms<R> {
             q.sigma,
             q.eta,
         );
-        let sk = Cx::new(R::select(take, sk.re, zero), R::select(take, sk.im, zero));
+        let sk = Cx::blend(take, sk, Cx::zero());
         self.coherent.add(sk);
         self.incoherent = self.incoherent + sk.norm_sqr();
         if q.area_density {
@@ -182,15 +182,6 @@ pub struct LaneUse {
     pub lanes: u64,
 }
 
-impl LaneUse {
-    /// Adds another count.
-    pub fn merge(&mut self, o: &LaneUse) {
-        self.batches += o.batches;
-        self.candidates += o.candidates;
-        self.lanes += o.lanes;
-    }
-}
-
 /// One scratch's term `S_k = (M_k − P_k) η_k` (the summand of Werner Eq. 17), µm².
 #[inline]
 pub fn scratch_term(
@@ -268,12 +259,7 @@ pub fn scratch_response_spectral<S: ScratchSet>(
     set: &S,
     q: &SpectralInputs,
 ) -> [ScratchTerms; MAX_SPECTRAL] {
-    let empty = ScratchTerms {
-        coherent: CoherentSum::new(base_response(Vec2::ZERO, q.sigma)),
-        incoherent: 0.0,
-        area_density: 0.0,
-    };
-    let mut terms = [empty; MAX_SPECTRAL];
+    let mut terms = [ScratchTerms::empty(q.sigma); MAX_SPECTRAL];
     let n = q.count as usize;
     let sigma = q.sigma;
     let mut rho = 0.0;
@@ -282,21 +268,19 @@ pub fn scratch_response_spectral<S: ScratchSet>(
         if let Some(frame) = s.frame() {
             let mut j = 0;
             while j < MAX_SPECTRAL && j < n {
-                let sk = scratch_term(
-                    &s,
-                    &frame,
-                    q.x0,
-                    q.xi[j],
-                    q.depth_half_turns_per_um[j],
+                let one = ResponseInputs {
+                    x0: [q.x0.x, q.x0.y],
+                    xi: [q.xi[j].x, q.xi[j].y],
+                    depth_half_turns_per_um: q.depth_half_turns_per_um[j],
                     sigma,
-                    q.eta,
-                );
+                    eta: q.eta,
+                    area_density: false,
+                };
                 // Load, update and store the whole element: rust-gpu lost updates made
                 // in place through a run-time index into this array of structs (the
                 // lavapipe test `backend-spirv/tests/bsdf.rs` caught it).
                 let mut t = terms[j];
-                t.coherent.add(sk);
-                t.incoherent += sk.norm_sqr();
+                t.accumulate(&s, &frame, &one, true);
                 terms[j] = t;
                 j += 1;
             }
