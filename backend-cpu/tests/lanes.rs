@@ -90,27 +90,8 @@ fn ghs_in_lanes_is_within_a_few_ulp_of_scalar() {
             "{name}: only {nonzero} values above 0"
         );
         let st = UlpStats::of(&scalar, &lanes);
-        let (worst, at) = st.worst();
-        let pct = |f: f64| st.percentile(f);
-        let exact = st.identical();
-        println!(
-            "{name}: identical {exact}/{}, median {}, 99% {}, 99.9% {}, worst {worst} ULP (query {at})",
-            st.all.len(),
-            pct(0.5),
-            pct(0.99),
-            pct(0.999)
-        );
-        assert!(
-            pct(0.99) <= P99_ULP,
-            "{name}: 99th percentile {} ULP",
-            pct(0.99)
-        );
-        assert!(
-            worst <= MAX_ULP,
-            "{name}: query {at}: lanes {} vs scalar {} ({worst} ULP)",
-            lanes[at],
-            scalar[at]
-        );
+        println!("{name}: {}", st.summary());
+        let worst = st.assert_within(name, P99_ULP, MAX_ULP);
         worst_all = worst_all.max(worst);
     }
     println!("worst over all materials: {worst_all} ULP");

@@ -27,16 +27,17 @@ pub fn ulps(a: f32, b: f32) -> u32 {
     a.to_bits().abs_diff(b.to_bits())
 }
 
-/// The distances of paired results, with their order statistics.
-pub struct UlpStats {
-    /// Per pair, in input order.
-    pub all: Vec<u32>,
+/// The distances of paired scalar and lane results, with their order statistics.
+pub struct UlpStats<'a> {
+    scalar: &'a [f32],
+    lanes: &'a [f32],
+    all: Vec<u32>,
     sorted: Vec<u32>,
 }
 
-impl UlpStats {
+impl<'a> UlpStats<'a> {
     /// The distances between `scalar[i]` and `lanes[i]`.
-    pub fn of(scalar: &[f32], lanes: &[f32]) -> UlpStats {
+    pub fn of(scalar: &'a [f32], lanes: &'a [f32]) -> UlpStats<'a> {
         let all: Vec<u32> = scalar
             .iter()
             .zip(lanes)
@@ -44,7 +45,12 @@ impl UlpStats {
             .collect();
         let mut sorted = all.clone();
         sorted.sort_unstable();
-        UlpStats { all, sorted }
+        UlpStats {
+            scalar,
+            lanes,
+            all,
+            sorted,
+        }
     }
 
     /// The largest distance and the first pair with it.
@@ -57,8 +63,31 @@ impl UlpStats {
         self.sorted[((self.sorted.len() - 1) as f64 * f) as usize]
     }
 
-    /// Pairs with identical bits (or both tiny).
-    pub fn identical(&self) -> usize {
-        self.all.iter().filter(|&&u| u == 0).count()
+    /// One line: identical bits, median, 99th and 99.9th percentile, worst (and where).
+    pub fn summary(&self) -> String {
+        let (worst, at) = self.worst();
+        let identical = self.all.iter().filter(|&&u| u == 0).count();
+        format!(
+            "identical {identical}/{}, median {}, 99% {}, 99.9% {}, worst {worst} ULP (query {at})",
+            self.all.len(),
+            self.percentile(0.5),
+            self.percentile(0.99),
+            self.percentile(0.999)
+        )
+    }
+
+    /// Asserts the 99th percentile and the worst distance against their bounds; returns the
+    /// worst.
+    pub fn assert_within(&self, name: &str, p99: u32, max: u32) -> u32 {
+        let (worst, at) = self.worst();
+        let pct = self.percentile(0.99);
+        assert!(pct <= p99, "{name}: 99th percentile {pct} ULP");
+        assert!(
+            worst <= max,
+            "{name}: query {at}: lanes {} vs scalar {} ({worst} ULP)",
+            self.lanes[at],
+            self.scalar[at]
+        );
+        worst
     }
 }
