@@ -37,13 +37,27 @@ impl<'a> Input<'a> {
     }
 }
 
-/// How [`Gpu::dispatch_paced`] slices a long dispatch.
+/// How a dispatch is sliced in time: every dispatch is submitted in slices that are each
+/// waited for on their own, the first of `first` elements, each next one sized from the
+/// last one's measured time so that it takes about `target` (between ¼× and 4× the last
+/// size, never more than the device limits allow). No single submission then runs for
+/// long: a display driver's watchdog (about 2 s on Windows) never sees one, a lost device
+/// is noticed between slices, and progress can be reported.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pace {
     /// Elements in the first slice.
     pub first: usize,
     /// The wall time each slice aims at.
     pub target: Duration,
+}
+
+impl Pace {
+    /// The pace of every [`Gpu`] unless [`Gpu::with_pace`] sets another: 1024 elements
+    /// first, then slices of about 100 ms.
+    pub const DEFAULT: Pace = Pace {
+        first: 1024,
+        target: Duration::from_millis(100),
+    };
 }
 
 /// Wall-clock time of each step of a dispatch, each ended by waiting for the device.
@@ -57,12 +71,27 @@ pub struct Timings {
     pub dispatch: Duration,
     /// Copying the output to a mappable buffer and into host memory.
     pub readback: Duration,
+    /// Submissions the compute work was sliced into ([`Pace`]).
+    pub slices: usize,
+    /// The longest of them, submission to completion: what a watchdog would see.
+    pub longest_slice: Duration,
 }
 
 impl Timings {
     /// `upload + dispatch + readback` (pipeline compilation excluded).
     pub fn total(&self) -> Duration {
         self.upload + self.dispatch + self.readback
+    }
+
+    /// Adds the cost of another dispatch of the same job: times and slices summed, the
+    /// longest slice the longer one.
+    pub fn absorb(&mut self, other: &Timings) {
+        self.pipeline += other.pipeline;
+        self.upload += other.upload;
+        self.dispatch += other.dispatch;
+        self.readback += other.readback;
+        self.slices += other.slices;
+        self.longest_slice = self.longest_slice.max(other.longest_slice);
     }
 }
 
@@ -82,26 +111,22 @@ impl Gpu {
     /// the output at binding `inputs.len()`, matching the entry point's signature (see
     /// `scratchwave-spirv-shader`). Every [`Input::per_item`] buffer must hold `len`
     /// elements. Element sizes must be multiples of 4 bytes (Vulkan storage buffers).
+    /// The work is submitted in slices of about [`Pace::target`] each (see [`Pace`]).
     pub fn dispatch<O: Pod>(
         &self,
         entry: &str,
         inputs: &[Input<'_>],
         len: usize,
     ) -> Result<Dispatched<O>> {
-        self.dispatch_paced(entry, inputs, len, None, &|_, _| {})
+        self.dispatch_with_progress(entry, inputs, len, &|_, _| {})
     }
 
-    /// [`Gpu::dispatch`], and with a [`Pace`] in slices that are each submitted and waited
-    /// for on their own: the first of `pace.first` elements, each next one sized from the
-    /// last one's time so that it takes about `pace.target` (never more than the device
-    /// limits allow). A device's watchdog then never sees one long submission, and
-    /// `progress(done, len)` is called after each slice.
-    pub fn dispatch_paced<O: Pod>(
+    /// [`Gpu::dispatch`], calling `progress(done, len)` after each slice.
+    pub fn dispatch_with_progress<O: Pod>(
         &self,
         entry: &str,
         inputs: &[Input<'_>],
         len: usize,
-        pace: Option<Pace>,
         progress: &dyn Fn(usize, usize),
     ) -> Result<Dispatched<O>> {
         let plan = self.plan::<O>(entry, inputs, len)?;
@@ -164,10 +189,8 @@ impl Gpu {
         let align = chunk_alignment(&self.limits);
         let group = scratchwave_spirv_shader::WORKGROUP_SIZE as usize;
         let round = |n: usize| (n / align * align).clamp(align, plan.chunk);
-        let mut size = match pace {
-            Some(p) => round(p.first),
-            None => plan.chunk,
-        };
+        let pace = self.pace;
+        let mut size = round(pace.first);
         let mut first = 0;
         while first < len {
             let count = size.min(len - first);
@@ -215,16 +238,14 @@ impl Gpu {
             self.queue.submit([encoder.finish()]);
             scope.pop(&format!("dispatching `{entry}`"))?;
             first += count;
-            if let Some(p) = pace {
-                self.wait("dispatching")?;
-                progress(first, len);
-                let took = slice_start.elapsed().as_secs_f64().max(1e-6);
-                let scale = (p.target.as_secs_f64() / took).clamp(0.25, 4.0);
-                size = round((count as f64 * scale) as usize);
-            }
-        }
-        if pace.is_none() {
             self.wait("dispatching")?;
+            self.check_alive(&format!("dispatching `{entry}`"))?;
+            progress(first, len);
+            let took = slice_start.elapsed();
+            timings.slices += 1;
+            timings.longest_slice = timings.longest_slice.max(took);
+            let scale = (pace.target.as_secs_f64() / took.as_secs_f64().max(1e-6)).clamp(0.25, 4.0);
+            size = round((count as f64 * scale) as usize);
         }
         timings.dispatch = start.elapsed();
 
@@ -334,6 +355,22 @@ impl Gpu {
             }
         }
         let output_bytes = (len * size_of::<O>()) as u64;
+        if let Some(budget) = self.memory_budget {
+            // What the dispatch allocates: each input (an empty one as 4 bytes), the output
+            // and its readback copy.
+            let inputs_bytes: u64 = inputs.iter().map(|i| i.bytes.len().max(4) as u64).sum();
+            let needed = inputs_bytes + 2 * output_bytes;
+            if needed > budget {
+                return Err(SpirvError::OutOfMemory {
+                    during: format!("planning `{entry}`"),
+                    detail: format!(
+                        "{len} elements need {needed} bytes on the device (inputs \
+                         {inputs_bytes}, output and its readback copy 2 × {output_bytes}), \
+                         more than the memory budget of {budget} bytes"
+                    ),
+                });
+            }
+        }
         if output_bytes > limits.max_buffer_size {
             return too_large(
                 "the output".into(),

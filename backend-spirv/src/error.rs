@@ -82,7 +82,41 @@ pub enum SpirvError {
         /// The limit's value.
         max: u64,
     },
-    /// wgpu reported a validation, out-of-memory or internal error.
+    /// The SPIR-V module failed the structural check that runs before the driver sees it
+    /// (a truncated file, a foreign or stale build); it was not passed to the driver.
+    #[error(
+        "the SPIR-V shader module is damaged: {problem} (rebuild it: `cargo build -p \
+         scratchwave-spirv`; check a module file: `spirv-val FILE`)"
+    )]
+    BadShader {
+        /// What the check found.
+        problem: String,
+    },
+    /// The driver could not compile an entry point of a module that passed the structural
+    /// check into a pipeline.
+    #[error(
+        "the driver failed to compile `{entry}`: {message} (check the module: `spirv-val \
+         FILE`; compare with lavapipe: `SCRATCHWAVE_ADAPTER=lavapipe`; the driver's log)"
+    )]
+    ShaderCompile {
+        /// Entry point.
+        entry: String,
+        /// wgpu's description.
+        message: String,
+    },
+    /// The device, or the budget set with `Gpu::with_memory_budget`, cannot hold the
+    /// buffers of a dispatch.
+    #[error(
+        "out of device memory while {during}: {detail} (diagnose: `vulkaninfo` lists the \
+         memory heaps; split the job into smaller tables or render a smaller image)"
+    )]
+    OutOfMemory {
+        /// What the backend was doing.
+        during: String,
+        /// How much was asked for against what limit, or the driver's words.
+        detail: String,
+    },
+    /// wgpu reported a validation or internal error, or the device was lost.
     #[error(
         "GPU error while {during}: {message} (device lost, out of memory or a driver fault; \
          diagnose: `vulkaninfo --summary`, the driver's log)"

@@ -1,7 +1,9 @@
 //! The Vulkan device, the embedded shader module and its compute pipelines.
 
 use crate::adapter::{AdapterChoice, AdapterSummary};
+use crate::dispatch::Pace;
 use crate::error::{Result, SpirvError};
+use crate::module::{CheckedModule, check};
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, PoisonError};
@@ -13,7 +15,7 @@ pub const SHADER_SPV: &[u8] = include_bytes!(env!("SCRATCHWAVE_SHADER_SPV"));
 /// The module's entry points, comma-separated (from rust-gpu's build metadata).
 const ENTRY_POINTS: &str = env!("SCRATCHWAVE_SHADER_ENTRY_POINTS");
 
-/// The entry points of [`SHADER_SPV`].
+/// The entry points of [`SHADER_SPV`] (from the build; a [`Gpu`] reads its own module's).
 pub fn entry_points() -> impl Iterator<Item = &'static str> {
     ENTRY_POINTS.split(',').filter(|name| !name.is_empty())
 }
@@ -35,11 +37,17 @@ pub struct Gpu {
     pub(crate) limits: wgpu::Limits,
     adapter: AdapterSummary,
     module: wgpu::ShaderModule,
+    /// The module's compute entry points.
+    entry_points: Vec<String>,
     pipelines: Mutex<HashMap<(String, usize), Arc<Pipeline>>>,
     /// Why the device was lost, once wgpu's device-lost callback has run.
     lost: Arc<Mutex<Option<String>>>,
     /// Largest chunk (elements) one dispatch covers; see [`Gpu::with_max_chunk`].
     pub(crate) max_chunk: usize,
+    /// How dispatches are sliced in time; see [`Gpu::with_pace`].
+    pub(crate) pace: Pace,
+    /// Device bytes one dispatch may allocate; see [`Gpu::with_memory_budget`].
+    pub(crate) memory_budget: Option<u64>,
 }
 
 impl Gpu {
@@ -50,6 +58,28 @@ impl Gpu {
 
     /// Opens the adapter `choice` selects among the machine's Vulkan adapters.
     pub fn with_adapter(choice: &AdapterChoice) -> Result<Self> {
+        // The embedded module is rust-gpu's validated output for `shader/`.
+        Self::open_with(choice, SHADER_SPV)
+    }
+
+    /// Opens the adapter `choice` selects with a SPIR-V module other than the embedded
+    /// one: a build of `shader/` made elsewhere, or a damaged module in a fault-injection
+    /// test. The module is first checked structurally (`module.rs`): a truncated or
+    /// otherwise malformed module is [`SpirvError::BadShader`] and never reaches the driver.
+    /// Its `GLCompute` entry points are the ones dispatches may name.
+    ///
+    /// # Safety
+    ///
+    /// A module that passes the structural check goes to the driver as it is
+    /// (`wgpu`'s SPIR-V passthrough): it must be valid SPIR-V (`spirv-val` passes) with the
+    /// shader crate's conventions (workgroup size `WORKGROUP_SIZE`, descriptor set 0 with
+    /// the inputs then the output). An invalid one is undefined behaviour in the driver.
+    pub unsafe fn with_module(choice: &AdapterChoice, spirv: &[u8]) -> Result<Self> {
+        Self::open_with(choice, spirv)
+    }
+
+    fn open_with(choice: &AdapterChoice, spirv: &[u8]) -> Result<Self> {
+        let module = check(spirv)?;
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
             backends: wgpu::Backends::VULKAN,
             ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()
@@ -72,10 +102,14 @@ impl Gpu {
                 available: available.join(", "),
             });
         };
-        Self::open(&adapters[index], summaries[index].clone())
+        Self::open(&adapters[index], summaries[index].clone(), module)
     }
 
-    fn open(adapter: &wgpu::Adapter, summary: AdapterSummary) -> Result<Self> {
+    fn open(
+        adapter: &wgpu::Adapter,
+        summary: AdapterSummary,
+        module: CheckedModule,
+    ) -> Result<Self> {
         if !adapter
             .features()
             .contains(wgpu::Features::PASSTHROUGH_SHADERS)
@@ -109,20 +143,22 @@ impl Gpu {
                 Some(format!("{reason:?}: {message}"));
         });
 
-        let words: Vec<u32> = SHADER_SPV
-            .chunks_exact(4)
-            .map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]))
-            .collect();
-        let entry_points: Vec<wgpu::PassthroughShaderEntryPoint<'_>> = entry_points()
+        let CheckedModule {
+            words,
+            entry_points: names,
+        } = module;
+        let entry_points: Vec<wgpu::PassthroughShaderEntryPoint<'_>> = names
+            .iter()
             .map(|name| wgpu::PassthroughShaderEntryPoint {
-                name: Cow::Borrowed(name),
+                name: Cow::Borrowed(name.as_str()),
                 workgroup_size: (scratchwave_spirv_shader::WORKGROUP_SIZE, 1, 1),
             })
             .collect();
         let scope = ErrorScopes::push(&device);
-        // SAFETY: the module is rust-gpu's output for `shader/`, validated by spirv-val at
-        // build time; its buffer interface (set 0, inputs then output, runtime arrays of
-        // the Pod types in `scratchwave-spirv-shader`) is exactly what `dispatch` binds.
+        // SAFETY: the module passed the structural check, and it is either rust-gpu's output
+        // for `shader/` (validated by spirv-val at build time) or one whose caller promised
+        // the same (`with_module`); its buffer interface (set 0, inputs then output, runtime
+        // arrays of the Pod types in `scratchwave-spirv-shader`) is what `dispatch` binds.
         let module = unsafe {
             device.create_shader_module_passthrough(wgpu::ShaderModuleDescriptorPassthrough {
                 label: Some("scratchwave-spirv-shader"),
@@ -140,8 +176,11 @@ impl Gpu {
             limits,
             adapter: summary,
             module,
+            entry_points: names,
             pipelines: Mutex::new(HashMap::new()),
             lost,
+            pace: Pace::DEFAULT,
+            memory_budget: None,
         })
     }
 
@@ -193,6 +232,30 @@ impl Gpu {
         self
     }
 
+    /// Slices every later dispatch in time by `pace` instead of [`Pace::DEFAULT`]: a
+    /// display driver with a shorter watchdog, or a service that must answer between
+    /// slices, lowers `pace.target`. [`Timings::slices`](crate::Timings::slices) and
+    /// [`Timings::longest_slice`](crate::Timings::longest_slice) report what a dispatch did.
+    pub fn with_pace(mut self, pace: Pace) -> Self {
+        self.pace = pace;
+        self
+    }
+
+    /// Caps the device memory one dispatch may allocate (its inputs, its output and the
+    /// output's readback copy) at `bytes`. A dispatch that needs more is refused before
+    /// anything is allocated, as [`SpirvError::OutOfMemory`] naming both sizes; without a
+    /// budget the driver decides, and its out-of-memory error is the same variant. A
+    /// service sharing the device sets one; tests use it to inject the fault.
+    pub fn with_memory_budget(mut self, bytes: u64) -> Self {
+        self.memory_budget = Some(bytes);
+        self
+    }
+
+    /// The compute entry points of this `Gpu`'s module.
+    pub fn module_entry_points(&self) -> impl Iterator<Item = &str> {
+        self.entry_points.iter().map(String::as_str)
+    }
+
     /// The pipeline for `entry` with `inputs` read-only buffers, compiled on first use;
     /// also returns the compile time (zero when cached).
     pub(crate) fn pipeline(&self, entry: &str, inputs: usize) -> Result<(Arc<Pipeline>, Duration)> {
@@ -205,10 +268,10 @@ impl Gpu {
         {
             return Ok((Arc::clone(p), Duration::ZERO));
         }
-        if !entry_points().any(|name| name == entry) {
+        if !self.module_entry_points().any(|name| name == entry) {
             return Err(SpirvError::UnknownEntryPoint {
                 name: entry.to_owned(),
-                available: entry_points().collect::<Vec<_>>().join(", "),
+                available: self.entry_points.join(", "),
             });
         }
         let start = Instant::now();
@@ -250,7 +313,17 @@ impl Gpu {
                 compilation_options: Default::default(),
                 cache: None,
             });
-        scope.pop(&format!("creating the pipeline for `{entry}`"))?;
+        if let Some(error) = scope.pop_error() {
+            return Err(match error {
+                error @ wgpu::Error::OutOfMemory { .. } => {
+                    classify(error, &format!("creating the pipeline for `{entry}`"))
+                }
+                other => SpirvError::ShaderCompile {
+                    entry: entry.to_owned(),
+                    message: other.to_string(),
+                },
+            });
+        }
         let compiled = Arc::new(Pipeline { layout, pipeline });
         self.pipelines
             .lock()
@@ -303,21 +376,36 @@ impl ErrorScopes {
         }
     }
 
-    /// Pops the scopes (innermost first) and reports the first error caught.
-    pub(crate) fn pop(self, during: &str) -> Result<()> {
+    /// Pops the scopes (innermost first) and returns the first error caught.
+    pub(crate) fn pop_error(self) -> Option<wgpu::Error> {
         let mut first = None;
         for scope in self.scopes.into_iter().rev() {
             if let Some(error) = pollster::block_on(scope.pop()) {
                 first.get_or_insert(error);
             }
         }
-        match first {
-            None => Ok(()),
-            Some(error) => Err(SpirvError::Gpu {
-                during: during.to_owned(),
-                message: error.to_string(),
-            }),
-        }
+        first
+    }
+
+    /// Pops the scopes and reports the first error caught as [`classify`] does.
+    pub(crate) fn pop(self, during: &str) -> Result<()> {
+        self.pop_error()
+            .map_or(Ok(()), |e| Err(classify(e, during)))
+    }
+}
+
+/// A wgpu error as the backend's error: out of memory as [`SpirvError::OutOfMemory`],
+/// anything else as [`SpirvError::Gpu`].
+pub(crate) fn classify(error: wgpu::Error, during: &str) -> SpirvError {
+    match error {
+        wgpu::Error::OutOfMemory { .. } => SpirvError::OutOfMemory {
+            during: during.to_owned(),
+            detail: format!("the driver: {error}"),
+        },
+        other => SpirvError::Gpu {
+            during: during.to_owned(),
+            message: other.to_string(),
+        },
     }
 }
 
@@ -339,9 +427,29 @@ mod tests {
     }
 
     #[test]
+    fn driver_out_of_memory_is_its_own_variant() {
+        let oom = wgpu::Error::OutOfMemory {
+            source: Box::new(std::io::Error::other("heap exhausted")),
+        };
+        match classify(oom, "uploading") {
+            SpirvError::OutOfMemory { during, detail } => {
+                assert_eq!(during, "uploading");
+                assert!(detail.contains("the driver"), "{detail}");
+            }
+            other => panic!("expected OutOfMemory, got {other:?}"),
+        }
+    }
+
+    #[test]
     fn module_is_spirv_with_entry_points() {
         assert_eq!(SHADER_SPV.len() % 4, 0);
         assert_eq!(SHADER_SPV[..4], 0x0723_0203_u32.to_le_bytes());
         assert!(entry_points().any(|name| name == "math_probe"));
+        // The structural check reads the same entry points as the build reported.
+        let mut read = check(SHADER_SPV).unwrap().entry_points;
+        let mut built: Vec<&str> = entry_points().collect();
+        read.sort();
+        built.sort_unstable();
+        assert_eq!(read, built);
     }
 }

@@ -12,20 +12,23 @@
 //!   [`SpirvError::NoVulkan`] naming the packages to install, never a panic.
 //! - [`Gpu::dispatch`]: the generic path — `Pod` input buffers in, one output element per
 //!   invocation out, chunked to the device limits, with [`Timings`] split into upload,
-//!   dispatch and readback.
+//!   dispatch and readback, and the slices the dispatch was cut into.
 //! - Typed entry points on top of it, each with the CPU function it must agree with:
 //!   [`Gpu::evaluate_table`] and [`Gpu::footprint_table`] (the CPU backend's
 //!   `evaluate_table` / `footprint_table`), [`Gpu::math_probe`] / [`math_probe_cpu`],
 //!   [`Gpu::lobe_probe`] (the shader crate's `lobe_probe::evaluate` on the CPU);
 //!   [`Gpu`] implements `scratchwave_host::TableBackend` for the conformance run.
 //! - [`Gpu::render_scene`]: a whole frame, the kernel's per-pixel light loop
-//!   (`kernel::render::radiance::pixel_radiance`) over a [`SceneInput`], dispatched in
-//!   slices paced to [`SCENE_PACE`].
+//!   (`kernel::render::radiance::pixel_radiance`) over a [`SceneInput`].
+//! - Every dispatch is submitted in slices of about 100 ms ([`Pace`]), within a memory
+//!   budget when one is set ([`Gpu::with_memory_budget`]); a damaged shader module is
+//!   refused before the driver sees it ([`SpirvError::BadShader`]).
 
 mod adapter;
 mod dispatch;
 mod error;
 mod gpu;
+mod module;
 mod probe;
 mod scene;
 mod table;
@@ -36,6 +39,6 @@ pub use dispatch::{Dispatched, Input, Pace, Timings};
 pub use error::{Result, SpirvError};
 pub use gpu::{Gpu, SHADER_SPV, entry_points};
 pub use probe::math_probe_cpu;
-pub use scene::{SCENE_PACE, SceneInput};
+pub use scene::SceneInput;
 pub use scratchwave_spirv_shader::FootprintParams;
 pub use scratchwave_spirv_shader::probe::{MathFunction, ProbeParams};

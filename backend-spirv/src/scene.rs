@@ -1,9 +1,9 @@
 //! Scenes on the GPU: the kernel's per-pixel light loop
 //! (`scratchwave_kernel::render::radiance::pixel_radiance`) in the `render_pixels` entry
 //! point, over the scene's flattened records. The host uploads them once and reads the
-//! image back; the pixels are dispatched in paced slices ([`SCENE_PACE`]).
+//! image back; the pixels are dispatched in paced slices ([`Pace`](crate::Pace)).
 
-use crate::dispatch::{Dispatched, Input, Pace};
+use crate::dispatch::{Dispatched, Input};
 use crate::error::Result;
 use crate::gpu::Gpu;
 use scratchwave_kernel::bvh::BvhNode;
@@ -13,15 +13,6 @@ use scratchwave_kernel::render::radiance::{
     FrameParams, PixelValue, SceneGeometry, SharedScratches,
 };
 use scratchwave_kernel::render::shading::ShadeMaterial;
-use std::time::Duration;
-
-/// The per-dispatch budget of a scene: slices of 1024 pixels first, then sized from the
-/// measured time of the last slice to take about 100 ms each (between ¼× and 4× the last
-/// size), far below the seconds a display driver's watchdog allows.
-pub const SCENE_PACE: Pace = Pace {
-    first: 1024,
-    target: Duration::from_millis(100),
-};
 
 /// Everything a frame reads, flattened (see the `render_pixels` entry point).
 #[derive(Clone, Copy, Debug)]
@@ -45,8 +36,8 @@ pub struct SceneInput<'a> {
 }
 
 impl Gpu {
-    /// Renders every pixel of `scene` (row-major from the top-left), paced by
-    /// [`SCENE_PACE`]; `progress(done, total)` after each slice.
+    /// Renders every pixel of `scene` (row-major from the top-left) in slices of the
+    /// `Gpu`'s [`Pace`](crate::Pace); `progress(done, total)` after each slice.
     pub fn render_scene(
         &self,
         scene: &SceneInput<'_>,
@@ -80,6 +71,6 @@ impl Gpu {
             Input::whole(s.g1),
             Input::per_item(&pixels),
         ];
-        self.dispatch_paced("render_pixels", &inputs, n, Some(SCENE_PACE), progress)
+        self.dispatch_with_progress("render_pixels", &inputs, n, progress)
     }
 }

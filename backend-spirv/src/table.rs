@@ -123,10 +123,7 @@ impl Gpu {
             for (row, value) in rows.iter_mut().zip(column.output) {
                 *field(row) = value;
             }
-            timings.pipeline += column.timings.pipeline;
-            timings.upload += column.timings.upload;
-            timings.dispatch += column.timings.dispatch;
-            timings.readback += column.timings.readback;
+            timings.absorb(&column.timings);
         }
         Ok(Dispatched {
             output: rows,

@@ -8,7 +8,9 @@
 //! "scan" (tables only) is the CPU visiting the scratches in slot order instead of
 //! traversing the BVH, to separate the lookup from the device. GPU times are split as the
 //! dispatch API reports them (pipeline compilation excluded by a warm-up run); "incl." adds
-//! upload and readback. The scratch lookup (BVH) is built once on the CPU and shared by both
+//! upload and readback; "slices" and "longest" are the submissions the dispatch was cut
+//! into by its time budget (`scratchwave_spirv::Pace`, about 100 ms each) and the longest of
+//! them, what a display driver's watchdog would see. The scratch lookup (BVH) is built once on the CPU and shared by both
 //! sides, so neither side's time includes it.
 
 use scratchwave_cpu::Backend;
@@ -36,9 +38,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rayon::current_num_threads()
     );
     println!(
-        "| model | CPU scalar Mq/s | CPU simd+rayon Mq/s | CPU simd+rayon, scan Mq/s | GPU dispatch Mq/s | GPU incl. upload+readback Mq/s | upload ms | dispatch ms | readback ms | max rel diff vs CPU |"
+        "| model | CPU scalar Mq/s | CPU simd+rayon Mq/s | CPU simd+rayon, scan Mq/s | GPU dispatch Mq/s | GPU incl. upload+readback Mq/s | upload ms | dispatch ms | readback ms | slices | longest slice ms | max rel diff vs CPU |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for model in [Model::Werner, Model::WernerBlended, Model::Velinov] {
         let params = TableParams {
             model: model as u32,
@@ -116,7 +118,7 @@ fn row(
     let rate = |d: Duration| n as f64 / d.as_secs_f64() / 1e6;
     let ms = |d: Duration| d.as_secs_f64() * 1e3;
     println!(
-        "| {label} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.1} | {:.1} | {:.1} | {:.2e} |",
+        "| {label} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.1} | {:.1} | {:.1} | {} | {:.1} | {:.2e} |",
         rate(scalar),
         rate(simd),
         scan.map_or("—".to_string(), |d| format!("{:.3}", rate(d))),
@@ -125,6 +127,8 @@ fn row(
         ms(t.upload),
         ms(t.dispatch),
         ms(t.readback),
+        t.slices,
+        ms(t.longest_slice),
         max_rel_diff(&reference, &run.output),
     );
     Ok(())
