@@ -11,41 +11,10 @@ use common::lavapipe;
 use scratchwave_host::ScratchLookup;
 use scratchwave_kernel::ghs::presets;
 use scratchwave_kernel::material::{FresnelAngle, Material};
-use scratchwave_kernel::scratch::{Profile, Scratch};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery};
 use scratchwave_spirv::{AdapterChoice, Gpu, Pace};
+use scratchwave_testkit::fixtures::table_scratches;
 use std::time::Duration;
-
-/// 64 scratches in a 200 µm square, both profiles (xorshift, fixed seed).
-fn scratches() -> Vec<Scratch> {
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    (0..64)
-        .map(|i| {
-            let c = [200.0 * next() - 100.0, 200.0 * next() - 100.0];
-            let angle = std::f64::consts::PI * next();
-            let half = 5.0 + 60.0 * next();
-            let d = [half * angle.cos(), half * angle.sin()];
-            let profile = if i % 2 == 0 {
-                Profile::Rect
-            } else {
-                Profile::Triangle
-            };
-            Scratch::from_endpoints(
-                [c[0] - d[0], c[1] - d[1]],
-                [c[0] + d[0], c[1] + d[1]],
-                0.5 + 2.0 * next() as f32,
-                0.05 + 0.5 * next() as f32,
-                profile,
-            )
-        })
-        .collect()
-}
 
 /// `n` queries: outgoing directions on a spiral, shading points on a grid, four wavelengths.
 fn queries(n: usize) -> Vec<TableQuery> {
@@ -87,7 +56,7 @@ fn tables_are_bitwise_identical_run_to_run_on_one_device() {
             first: 256,
             target: Duration::from_nanos(1),
         });
-    let scratches = scratches();
+    let scratches = table_scratches(64);
     let queries = queries(20_000);
     for model in [Model::Werner, Model::WernerBlended, Model::Velinov] {
         let params = TableParams {

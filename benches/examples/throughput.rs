@@ -19,9 +19,10 @@ use scratchwave_host::ScratchLookup;
 use scratchwave_kernel::ghs::presets;
 use scratchwave_kernel::lights::{LightParams, light_integral};
 use scratchwave_kernel::material::{FresnelAngle, Material};
-use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice};
+use scratchwave_kernel::scratch::ScratchSlice;
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate, evaluate_ghs};
 use scratchwave_spirv::{Dispatched, Gpu};
+use scratchwave_testkit::fixtures::table_scratches;
 use scratchwave_testkit::light_configs::{Rng, SweepRanges, grid_batch};
 use std::time::{Duration, Instant};
 
@@ -30,7 +31,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let n: usize = args.next().map_or(Ok(1_000_000), |s| s.parse())?;
     let count: usize = args.next().map_or(Ok(64), |s| s.parse())?;
     let gpu = Gpu::new()?;
-    let scratches = scratches(count);
+    let scratches = table_scratches(count);
     let queries = queries(n);
     println!(
         "adapter: {}; {n} queries, {count} scratches in a 200 µm square, σ = 10 µm, {} rayon threads\n",
@@ -132,37 +133,6 @@ fn row(
         max_rel_diff(&reference, &run.output),
     );
     Ok(())
-}
-
-/// `count` scratches with pseudo-random positions, directions and sizes (fixed seed).
-fn scratches(count: usize) -> Vec<Scratch> {
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    (0..count)
-        .map(|i| {
-            let c = [200.0 * next() - 100.0, 200.0 * next() - 100.0];
-            let angle = std::f64::consts::PI * next();
-            let half = 5.0 + 60.0 * next();
-            let d = [half * angle.cos(), half * angle.sin()];
-            let profile = if i % 2 == 0 {
-                Profile::Rect
-            } else {
-                Profile::Triangle
-            };
-            Scratch::from_endpoints(
-                [c[0] - d[0], c[1] - d[1]],
-                [c[0] + d[0], c[1] + d[1]],
-                0.5 + 2.0 * next() as f32,
-                0.05 + 0.5 * next() as f32,
-                profile,
-            )
-        })
-        .collect()
 }
 
 /// `n` queries: viewing directions on a spiral, fixed light, shading points on a grid.

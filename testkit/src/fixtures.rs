@@ -169,3 +169,36 @@ pub fn scratch_field(n: usize, seed: u64) -> (Vec<Segment2>, f32) {
     let extent = 10.0 * (n as f32).sqrt();
     (random_segments(n, seed, extent, 50.0), extent)
 }
+
+/// `count` scratches in a 200 µm square around the origin, rectangular and V profiles
+/// alternating, half lengths 5–65 µm, widths 0.5–2.5 µm, depths 0.05–0.55 µm (xorshift, fixed
+/// seed): the throughput example's and the SPIR-V determinism test's table scratches.
+pub fn table_scratches(count: usize) -> Vec<Scratch> {
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|i| {
+            let c = [200.0 * next() - 100.0, 200.0 * next() - 100.0];
+            let angle = std::f64::consts::PI * next();
+            let half = 5.0 + 60.0 * next();
+            let d = [half * angle.cos(), half * angle.sin()];
+            let profile = if i % 2 == 0 {
+                Profile::Rect
+            } else {
+                Profile::Triangle
+            };
+            Scratch::from_endpoints(
+                [c[0] - d[0], c[1] - d[1]],
+                [c[0] + d[0], c[1] + d[1]],
+                0.5 + 2.0 * next() as f32,
+                0.05 + 0.5 * next() as f32,
+                profile,
+            )
+        })
+        .collect()
+}
