@@ -118,7 +118,7 @@ pub enum SpirvError {
     },
     /// wgpu reported a validation or internal error, or the device was lost.
     #[error(
-        "GPU error while {during}: {message} (device lost, out of memory or a driver fault; \
+        "GPU error while {during}: {message} (device lost or a driver fault; \
          diagnose: `vulkaninfo --summary`, the driver's log)"
     )]
     Gpu {
