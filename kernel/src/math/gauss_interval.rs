@@ -14,10 +14,10 @@
 //! integrated directly by 8-point Gauss–Legendre instead.
 
 use super::complex::C32;
-use super::faddeeva::{faddeeva, faddeeva_lanes, faddeeva_pair};
+use super::faddeeva::{faddeeva, faddeeva_pair};
 use super::quadrature::{GL8_W as GL_W, GL8_X as GL_X};
 use super::trig_pi::cis_pi_lanes;
-use crate::lane::{Blend, Cx, Mask, Real, branch};
+use crate::lane::{Blend, Cx, Real, branch};
 
 /// The Faddeeva argument `s(−y + ix)` of the endpoint `z = x + iy`, with `s = sign(x)` so
 /// that it lies in the upper half plane. The endpoint's term is then
@@ -149,6 +149,8 @@ fn endpoint_faddeeva<R: Real>(
     need_a: R::Mask,
     need_b: R::Mask,
 ) -> (Cx<R>, Cx<R>) {
+    use super::faddeeva::faddeeva_lanes;
+    use crate::lane::Mask;
     let zero = Cx::splat(0.0, 0.0);
     match (need_a.any(), need_b.any()) {
         (true, true) => faddeeva_pair(za, zb),
