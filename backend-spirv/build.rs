@@ -7,10 +7,19 @@
 //!    `codegen/` (pinned lock, `use-installed-tools`) into the rust-gpu cache directory
 //!    (`$XDG_CACHE_HOME/rust-gpu`, else `~/.cache/rust-gpu`). A few minutes, once.
 //! 2. The shader crate itself, compiled by `cargo +nightly rustc` with that backend
-//!    (spirv-builder does the driving). About a second after a kernel edit.
+//!    (spirv-builder does the driving). After a kernel edit this takes most of an hour on a
+//!    2-core machine (rust-gpu codegen and `spirv-opt` are single-threaded), so the module
+//!    is kept in a content-addressed cache (`build/shader_cache.rs`,
+//!    `~/.cache/scratchwave/shader`): another checkout of the same kernel and shader, a
+//!    fresh clone included, reuses it without running the nightly at all.
+//!    `SCRATCHWAVE_SHADER_CACHE=off` always builds.
 //!
 //! Anything missing fails the build with a message naming `scripts/setup.sh`.
 
+#[path = "build/shader_cache.rs"]
+mod shader_cache;
+
+use shader_cache::io_error;
 use spirv_builder::{SpirvBuilder, cargo_cmd::CargoCmd};
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -39,20 +48,39 @@ fn main() {
 
 fn build() -> BuildResult<()> {
     let manifest_dir = PathBuf::from(env("CARGO_MANIFEST_DIR")?);
+    let workspace = manifest_dir
+        .parent()
+        .ok_or("backend-spirv has no parent directory")?
+        .to_path_buf();
     let shader_dir = manifest_dir.join("shader");
     let codegen_dir = manifest_dir.join("codegen");
-    for path in [
-        "build.rs",
-        "codegen/Cargo.toml",
-        "codegen/Cargo.lock",
-        "shader/Cargo.toml",
-    ] {
+    for path in ["codegen/Cargo.toml", "codegen/Cargo.lock"] {
         println!(
             "cargo::rerun-if-changed={}",
             manifest_dir.join(path).display()
         );
     }
-    println!("cargo::rerun-if-env-changed=XDG_CACHE_HOME");
+    for path in shader_cache::HASHED.iter().chain(&["Cargo.lock"]) {
+        println!("cargo::rerun-if-changed={}", workspace.join(path).display());
+    }
+    for var in ["XDG_CACHE_HOME", "SCRATCHWAVE_SHADER_CACHE"] {
+        println!("cargo::rerun-if-env-changed={var}");
+    }
+    let features: Vec<String> = if std::env::var_os("CARGO_FEATURE_PORTABLE_MATH").is_some() {
+        vec!["portable-math".to_owned()]
+    } else {
+        Vec::new()
+    };
+
+    // A module built before from the same inputs, by any checkout on this machine.
+    let cache = shader_cache::directory();
+    let key = shader_cache::key(&workspace, &build_config(&codegen_dir, &features)?)?;
+    if let Some(entry) = cache
+        .as_deref()
+        .and_then(|dir| shader_cache::lookup(dir, &key))
+    {
+        return announce(&entry.module, &entry.entry_points);
+    }
 
     check_toolchain()?;
     check_spirv_tools()?;
@@ -64,22 +92,64 @@ fn build() -> BuildResult<()> {
     // rerun-if-changed for every source file the shader depends on (the kernel included),
     // rustc warnings forwarded as cargo warnings.
     builder.build_script.defaults = true;
-    if std::env::var_os("CARGO_FEATURE_PORTABLE_MATH").is_some() {
-        builder = builder.shader_crate_features(["portable-math".to_owned()]);
-    }
+    builder = builder.shader_crate_features(features);
+    let start = Instant::now();
     let result = builder
         .build()
         .map_err(|e| format!("building the shader crate {}: {e}", shader_dir.display()))?;
-    let module = result.module.unwrap_single();
+    let module = result.module.unwrap_single().to_path_buf();
+    let Some(dir) = cache else {
+        return announce(&module, &result.entry_points);
+    };
+    let outside = shader_cache::outside_inputs(&module.with_extension("d"), &workspace)?;
+    if !outside.is_empty() {
+        println!(
+            "cargo::warning=the SPIR-V module is not cached: it read {} , which the cache key \
+             (backend-spirv/build/shader_cache.rs) does not cover",
+            outside.join(", ")
+        );
+        return announce(&module, &result.entry_points);
+    }
+    let entry = shader_cache::store(&dir, &key, &module, &result.entry_points)?;
+    println!(
+        "cargo::warning=built the SPIR-V module in {:.0} s; cached for every checkout on \
+         this machine: {}",
+        start.elapsed().as_secs_f64(),
+        entry.module.display()
+    );
+    announce(&entry.module, &entry.entry_points)
+}
+
+/// Hands the module and its entry points to the crate.
+fn announce(module: &Path, entry_points: &[String]) -> BuildResult<()> {
     println!(
         "cargo::rustc-env=SCRATCHWAVE_SHADER_SPV={}",
         module.display()
     );
     println!(
         "cargo::rustc-env=SCRATCHWAVE_SHADER_ENTRY_POINTS={}",
-        result.entry_points.join(",")
+        entry_points.join(",")
     );
     Ok(())
+}
+
+/// What the module depends on besides its sources: toolchain, target, features, the codegen
+/// backend's manifest and lock, and the versions of the SPIR-V tools it runs.
+fn build_config(codegen_dir: &Path, features: &[String]) -> BuildResult<Vec<String>> {
+    let mut config = vec![TOOLCHAIN.to_owned(), TARGET.to_owned(), features.join(",")];
+    for file in ["Cargo.toml", "Cargo.lock"] {
+        config.push(String::from_utf8_lossy(&read(&codegen_dir.join(file))?).into_owned());
+    }
+    for tool in ["spirv-opt", "spirv-val"] {
+        let version = Command::new(tool)
+            .arg("--version")
+            .stderr(Stdio::null())
+            .output()
+            .map(|o| String::from_utf8_lossy(&o.stdout).into_owned())
+            .unwrap_or_else(|_| "missing".to_owned());
+        config.push(format!("{tool} {version}"));
+    }
+    Ok(config)
 }
 
 fn env(name: &str) -> BuildResult<String> {
@@ -223,10 +293,6 @@ fn rust_gpu_cache_dir() -> BuildResult<PathBuf> {
 
 fn read(path: &Path) -> BuildResult<Vec<u8>> {
     fs::read(path).map_err(|e| io_error("reading", path, e))
-}
-
-fn io_error(action: &str, path: &Path, error: std::io::Error) -> String {
-    format!("{action} {}: {error}", path.display())
 }
 
 /// FNV-1a over the parts, separated: a cache key that is stable across Rust versions
