@@ -32,7 +32,7 @@ Two switches:
                      integrand there (pairwise overlaps only; a triple overlap is refused).
 
 frozen/summed is exactly the kernel's Werner model (table::evaluate, model werner,
-depth_term exact): the golden test kernel/tests/heightfield_reference.rs checks that.
+depth_term exact): the golden test testkit/tests/heightfield_reference.rs checks that.
 
 Quadrature (float64, numpy):
   * Single grooves: in the groove frame the integrand of S_k is a product g_s(s) g_v(v) for
