@@ -10,6 +10,7 @@
 
 use scratchwave_cpu::{Backend, evaluate_ghs_table};
 use scratchwave_host::rng::SplitMix64;
+use scratchwave_kernel::conductor::Conductor;
 use scratchwave_kernel::ghs::layers::LayerForm;
 use scratchwave_kernel::ghs::{DiffColor, GhsParams, Layer, presets};
 use scratchwave_kernel::table::TableQuery;
@@ -76,6 +77,14 @@ fn ghs_in_lanes_is_within_a_few_ulp_of_scalar() {
             presets::GLOSSY_PLASTIC
                 .with_layer(Layer::Subsurface, LayerForm::Published, 0.8)
                 .with_diff_color(DiffColor::Fresnel),
+        ),
+        // A measured spectral IOR: n, k differ from lane to lane with the wavelength.
+        (
+            "rough copper, spectral IOR, Q colour".to_string(),
+            GhsParams {
+                conductor: Conductor::Copper as u32,
+                ..presets::ROUGH_METAL.with_diff_color(DiffColor::Q)
+            },
         ),
     ])
     .collect();

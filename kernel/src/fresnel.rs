@@ -9,14 +9,16 @@ use crate::math;
 ///
 /// `F_s = |(cosθ − √(η² − sin²θ)) / (cosθ + √(η² − sin²θ))|²`,
 /// `F_p = |(η² cosθ − √(η² − sin²θ)) / (η² cosθ + √(η² − sin²θ))|²`.
-/// Any [`Real`] for the cosine (one `f32` or lanes); `n`, `k` are shared.
+/// Any [`Real`]: one `f32` or lanes, the IOR per lane as well (a spectral IOR,
+/// [`crate::conductor::ior`], differs between wavelengths).
 #[inline(always)]
-pub fn fresnel<R: Real>(cos_theta: R, n: f32, k: f32) -> R {
+pub fn fresnel<R: Real>(cos_theta: R, n: R, k: R) -> R {
     let c = math::clamp(cos_theta, R::splat(0.0), R::splat(1.0));
-    let eta2 = Cx::<R>::splat(n * n - k * k, 2.0 * n * k);
+    let two_nk = R::splat(2.0) * n * k;
+    let eta2 = Cx::new(n * n - k * k, two_nk);
     let root = math::csqrt_cx(Cx::new(
-        R::splat((n - 1.0) * (n + 1.0) - k * k) + c * c,
-        R::splat(2.0 * n * k),
+        (n - R::splat(1.0)) * (n + R::splat(1.0)) - k * k + c * c,
+        two_nk,
     ));
     let fs = ratio_norm_sqr(Cx::real(c) - root, Cx::real(c) + root);
     let e2c = eta2.scale(c);

@@ -32,6 +32,8 @@ pub mod gpu_enum;
 
 pub mod bsdf;
 pub mod bvh;
+pub mod conductor;
+pub mod conductor_data;
 pub mod footprint;
 pub mod fresnel;
 pub mod ghs;

@@ -1,7 +1,9 @@
 //! The reflectance of a query's surface: a constant, or the Fresnel term of a complex IOR
-//! at a chosen angle (H&P Eqs. 11–13). GPU-visible; used by the tables, the area lights
+//! (constant, or a metal's spectral curve from [`crate::conductor`]) at a chosen angle
+//! (H&P Eqs. 11–13). GPU-visible; used by the tables, the area lights
 //! and the renderer alike.
 
+use crate::conductor::{self, Conductor};
 use crate::fresnel::fresnel;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
@@ -11,7 +13,7 @@ gpu_enum! {
     pub enum MaterialKind {
         /// A constant reflectance `f`.
         Constant = 0,
-        /// Fresnel of the complex IOR `n + ik`.
+        /// Fresnel of the complex IOR `n + ik`, or of the spectral IOR of `conductor`.
         Ior = 1,
     }
     fallback = Ior;
@@ -44,8 +46,10 @@ pub struct Material {
     pub n: f32,
     /// Imaginary part of the IOR (kind 1).
     pub k: f32,
+    /// A [`Conductor`] as `u32` (kind 1): when not `None`, its spectral IOR replaces `n`, `k`.
+    pub conductor: u32,
     /// Explicit padding.
-    pub pad: [u32; 3],
+    pub pad: [u32; 2],
 }
 
 const _: () = assert!(core::mem::size_of::<Material>() == 32);
@@ -59,7 +63,8 @@ impl Material {
             f,
             n: 0.0,
             k: 0.0,
-            pad: [0; 3],
+            conductor: Conductor::None as u32,
+            pad: [0; 2],
         }
     }
 
@@ -71,13 +76,22 @@ impl Material {
             f: 0.0,
             n,
             k,
-            pad: [0; 3],
+            conductor: Conductor::None as u32,
+            pad: [0; 2],
         }
     }
 
-    /// The reflectance for unit directions `wi`, `wo`.
+    /// Fresnel reflectance of the spectral IOR of `metal` at the given angle.
+    pub const fn conductor(metal: Conductor, angle: FresnelAngle) -> Material {
+        let mut m = Material::ior(0.0, 0.0, angle);
+        m.conductor = metal as u32;
+        m
+    }
+
+    /// The reflectance for unit directions `wi`, `wo` at `lambda_nm` (which only a
+    /// spectral IOR reads).
     #[inline]
-    pub fn reflectance(&self, wi: Vec3, wo: Vec3) -> f32 {
+    pub fn reflectance(&self, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
         if MaterialKind::from_u32(self.kind) == MaterialKind::Constant {
             return self.f;
         }
@@ -86,6 +100,19 @@ impl Material {
             FresnelAngle::Normal => 1.0,
             FresnelAngle::ThetaD => wi.dot((wi + wo).normalize_or_zero()),
         };
-        fresnel(cos, self.n, self.k)
+        let (n, k) = conductor::ior(
+            Conductor::from_u32(self.conductor),
+            lambda_nm,
+            self.n,
+            self.k,
+        );
+        fresnel(cos, n, k)
+    }
+
+    /// Whether [`Material::reflectance`] depends on the wavelength.
+    #[inline]
+    pub fn is_spectral(&self) -> bool {
+        MaterialKind::from_u32(self.kind) == MaterialKind::Ior
+            && Conductor::from_u32(self.conductor) != Conductor::None
     }
 }

@@ -176,7 +176,7 @@ impl Prepared {
                 DepthTerm::from_u32(params.depth_term).gamma(wi.z + wo.z),
                 q.lambda_nm,
             ),
-            f: q.material.reflectance(wi, wo),
+            f: q.material.reflectance(wi, wo, q.lambda_nm),
             lambda,
         })
     }

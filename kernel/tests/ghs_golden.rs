@@ -150,7 +150,7 @@ fn params(m: &Value) -> GhsParams {
         layer: m["layer"].as_u64().unwrap() as u32,
         layer_form: m["layer_form"].as_u64().unwrap() as u32,
         layer_albedo: f(m, "layer_albedo"),
-        pad: 0,
+        conductor: 0,
     }
 }
 

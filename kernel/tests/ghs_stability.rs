@@ -56,7 +56,7 @@ fn adversarial_params(r: &mut Pcg) -> (GhsParams, f32) {
         layer: r.next_u32() % 4,
         layer_form: r.next_u32() % 3,
         layer_albedo: pick(r, &[0.0, 1.0, 0.5, 1e-7, 1.0 - 1e-7]),
-        pad: 0,
+        conductor: 0,
     };
     (p, log_uniform(r, 0.2, 20.0))
 }

@@ -227,7 +227,8 @@ fn single_band_beyond_its_domain_stays_within_its_own_bound() {
             f: 1.17812306e-7,
             n: 0.05,
             k: 19.607841,
-            pad: [0; 3],
+            conductor: 0,
+            pad: [0; 2],
         },
         light: Light {
             kind: 2_256_963_072,

@@ -47,7 +47,7 @@ use scratchwave_kernel::render::pixel::sample_offset;
 use scratchwave_kernel::render::radiance::{FrameParams, hit_point};
 use scratchwave_kernel::render::shading::{
     self, BaseKind, ShadeMaterial, area_node_radiance_spectrum, base_weight, delta_light_spectrum,
-    is_delta, shadow_ray,
+    is_delta, mirror_reflectance, shadow_ray,
 };
 use scratchwave_kernel::render::spectrum::{
     self, SPECTRAL_MIN_NM, SPECTRAL_RANGE_NM, SpectrumMode,
@@ -547,7 +547,7 @@ impl<Q: RayQueries + ?Sized> Ctx<'_, Q> {
     }
 
     /// The radiance of every light term at the wavelengths of `wl` (one scratch walk per
-    /// light), plus the smooth base's `mirror` radiance.
+    /// light), plus the smooth base's `mirror` radiance (per unit reflectance).
     fn radiance(
         &self,
         m: &ShadeMaterial,
@@ -557,7 +557,12 @@ impl<Q: RayQueries + ?Sized> Ctx<'_, Q> {
         wl: &Wavelengths,
         mirror: f32,
     ) -> [f32; MAX_LAMBDAS] {
-        let mut out = [mirror; MAX_LAMBDAS];
+        let mut out = [0.0; MAX_LAMBDAS];
+        if mirror > 0.0 {
+            for (o, &nm) in out.iter_mut().zip(&wl.nm).take(wl.len()) {
+                *o = mirror * mirror_reflectance(m, hp.wo, nm);
+            }
+        }
         for (light, t) in self.prep.lights.iter().zip(terms) {
             let s = match t {
                 LightTerm::None => continue,
@@ -575,9 +580,10 @@ impl<Q: RayQueries + ?Sized> Ctx<'_, Q> {
         out
     }
 
-    /// A smooth base's mirror reflection of an area light: `(1 − ρc)·F·L` when the mirror
-    /// direction of `wo` reaches the light unoccluded (a delta: no sampling). Returns the
-    /// radiance and the shadow rays traced.
+    /// A smooth base's mirror reflection of an area light, per unit reflectance: `(1 − ρc)·L`
+    /// when the mirror direction of `wo` reaches the light unoccluded (a delta: no
+    /// sampling; [`Self::radiance`] multiplies by `F` per wavelength). Returns it and the
+    /// shadow rays traced.
     fn mirror_base(
         &self,
         m: &ShadeMaterial,
@@ -601,7 +607,7 @@ impl<Q: RayQueries + ?Sized> Ctx<'_, Q> {
             return (0.0, 1);
         }
         let w = base_weight(m, sp.x_um, &lk.scratches);
-        (w * m.material.reflectance(wm, hp.wo) * light.emission, 1)
+        (w * light.emission, 1)
     }
 }
 

@@ -5,6 +5,7 @@ use crate::error::SpecError;
 use crate::json::{self, Obj};
 use crate::range;
 use scratchwave_host::{FootprintBatch, TableBatch};
+use scratchwave_kernel::conductor::Conductor;
 use scratchwave_kernel::footprint::Ellipse;
 use scratchwave_kernel::ghs::layers::LayerForm;
 use scratchwave_kernel::ghs::{self, DiffColor, GhsParams, Layer};
@@ -394,8 +395,8 @@ fn ghs_table_spec(top: &Obj) -> Result<TableStream, SpecError> {
 /// [`TableBatch::ghs`]; the id only keeps reports unambiguous).
 pub const GHS_MODEL_ID: u32 = 3;
 
-/// A GHS material: `{"sigma_s_um", "beta", "p", "b_um", "c", "ior": [n, k], "diff_color"?,
-/// "layer"?}` with the ranges the kernel documents.
+/// A GHS material: `{"sigma_s_um", "beta", "p", "b_um", "c", "ior": [n, k] | "gold" | …,
+/// "diff_color"?, "layer"?}` with the ranges the kernel documents.
 pub fn ghs_material(v: &Value, path: &str) -> Result<GhsParams, SpecError> {
     let m = Obj::new(
         v,
@@ -429,11 +430,9 @@ pub fn ghs_material(v: &Value, path: &str) -> Result<GhsParams, SpecError> {
     let p = range("p", 0.1, 4.0, false)?;
     let b_um = range("b_um", 0.0, 1.0e6, true)?;
     let c = range("c", 1.0, f64::from(ghs::limits::C_MAX), true)?;
-    let [n, k] = m.vec::<2>("ior")?;
-    let ior_path = m.path_of("ior");
-    let n = json::positive(n, &format!("{ior_path}[0]"), false)?;
-    let k = json::positive(k, &format!("{ior_path}[1]"), true)?;
+    let (n, k, metal) = ior(&m)?;
     let mut params = GhsParams::new(sigma_s_um, beta, p, b_um, c, n, k);
+    params.conductor = metal as u32;
     params.diff_color = match m.opt_choice("diff_color", &["Q/2", "Q", "F", "none"])? {
         Some("Q") => DiffColor::Q as u32,
         Some("F") => DiffColor::Fresnel as u32,
@@ -615,7 +614,26 @@ pub fn direction(o: &Obj, key: &str) -> Result<[f32; 3], SpecError> {
     Ok([(d[0] * s) as f32, (d[1] * s) as f32, (d[2] * s) as f32])
 }
 
-/// A reflectance `{"F"}` or `{"ior": [n, k], "fresnel_angle"?}` at `path`.
+/// The `"ior"` field of `m`: `[n, k]` (constant), or the name of a metal whose measured
+/// spectral IOR the kernel interpolates at each wavelength (`kernel::conductor`: "gold",
+/// "silver", "copper", "aluminium", "nickel"; then `n = k = 0` and the metal is returned).
+fn ior(m: &Obj<'_>) -> Result<(f32, f32, Conductor), SpecError> {
+    if m.get("ior").is_some_and(Value::is_string) {
+        let name = m.choice("ior", &Conductor::NAMES)?;
+        let code = Conductor::NAMES
+            .iter()
+            .position(|&n| n == name)
+            .unwrap_or(0);
+        return Ok((0.0, 0.0, Conductor::from_u32(code as u32 + 1)));
+    }
+    let [n, k] = m.vec::<2>("ior")?;
+    let ior_path = m.path_of("ior");
+    let n = json::positive(n, &format!("{ior_path}[0]"), false)?;
+    let k = json::positive(k, &format!("{ior_path}[1]"), true)?;
+    Ok((n, k, Conductor::None))
+}
+
+/// A reflectance `{"F"}` or `{"ior": [n, k] | "gold" | …, "fresnel_angle"?}` at `path`.
 pub fn material(v: &Value, path: &str) -> Result<Material, SpecError> {
     let m = Obj::new(v, path, &["F", "ior", "fresnel_angle"])?;
     match (m.get("F"), m.get("ior")) {
@@ -640,16 +658,15 @@ pub fn material(v: &Value, path: &str) -> Result<Material, SpecError> {
             Ok(Material::constant(f as f32))
         }
         (None, Some(_)) => {
-            let [n, k] = m.vec::<2>("ior")?;
-            let ior_path = m.path_of("ior");
-            let n = json::positive(n, &format!("{ior_path}[0]"), false)?;
-            let k = json::positive(k, &format!("{ior_path}[1]"), true)?;
+            let (n, k, metal) = ior(&m)?;
             let angle = match m.opt_choice("fresnel_angle", &["theta_d", "theta_i", "normal"])? {
                 Some("theta_i") => FresnelAngle::ThetaI,
                 Some("normal") => FresnelAngle::Normal,
                 _ => FresnelAngle::ThetaD,
             };
-            Ok(Material::ior(n, k, angle))
+            let mut material = Material::ior(n, k, angle);
+            material.conductor = metal as u32;
+            Ok(material)
         }
         (None, None) => Err(SpecError::field(path, "needs \"F\" or \"ior\"")),
     }

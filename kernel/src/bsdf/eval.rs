@@ -77,7 +77,6 @@ pub fn eval<S: ScratchSet>(
                 area_density: ghs_base || (model == table::Model::Velinov && m.base_gaussian == 1),
             };
             let terms = scratch_response_spectral(set, &q);
-            let f = m.material.reflectance(wi, wo);
             let mut j = 0;
             while j < MAX_SPECTRAL && j < n {
                 vals[j] = table::model_value(
@@ -86,7 +85,7 @@ pub fn eval<S: ScratchSet>(
                     &terms[j],
                     xi[j],
                     sigma,
-                    f,
+                    m.material.reflectance(wi, wo, wl.nm[j]),
                     um_from_nm(wl.nm[j]),
                 );
                 j += 1;

@@ -30,9 +30,16 @@ pub fn diffraction_color(wi: Vec3, wo: Vec3, n: f32, k: f32) -> f32 {
     diffraction_color_lanes(wi.into(), wo.into(), n, k)
 }
 
+/// `η² − 1` (`(n − 1)(n + 1) − k²`, exact for `n` near 1) and `2nk`.
+#[inline(always)]
+fn eta2_minus_1<R: Real>(n: R, k: R) -> Cx<R> {
+    let one = R::splat(1.0);
+    Cx::new((n - one) * (n + one) - k * k, R::splat(2.0) * n * k)
+}
+
 /// [`diffraction_color`] for any [`Real`] (the one formula).
 #[inline(always)]
-pub fn diffraction_color_lanes<R: Real>(wi: V3<R>, wo: V3<R>, n: f32, k: f32) -> R {
+pub fn diffraction_color_lanes<R: Real>(wi: V3<R>, wo: V3<R>, n: R, k: R) -> R {
     let c = R::splat;
     let ci = math::clamp(wi.z, c(0.0), c(1.0));
     let co = math::clamp(wo.z, c(0.0), c(1.0));
@@ -44,10 +51,9 @@ pub fn diffraction_color_lanes<R: Real>(wi: V3<R>, wo: V3<R>, n: f32, k: f32) ->
     let apart = sso.gt(c(1.0e-12));
     let cos_phi = R::select(apart, -(wi.x * wo.x + wi.y * wo.y) / sso, c(1.0));
     let sin_phi = R::select(apart, -(wi.x * wo.y - wi.y * wo.x) / sso, c(0.0));
-    let eta2m1_f = ((n - 1.0) * (n + 1.0) - k * k, 2.0 * n * k);
-    let eta2m1 = Cx::<R>::splat(eta2m1_f.0, eta2m1_f.1);
-    let eta2 = Cx::<R>::splat(eta2m1_f.0 + 1.0, eta2m1_f.1 + 0.0);
-    let e2m1 = c(eta2m1_f.0 * eta2m1_f.0 + eta2m1_f.1 * eta2m1_f.1);
+    let eta2m1 = eta2_minus_1(n, k);
+    let eta2 = Cx::new(eta2m1.re + c(1.0), eta2m1.im + c(0.0));
+    let e2m1 = eta2m1.re * eta2m1.re + eta2m1.im * eta2m1.im;
     let ri = math::csqrt_cx(eta2m1 + Cx::real(ci * ci));
     let ro = math::csqrt_cx(eta2m1 + Cx::real(co * co));
     let s_i = Cx::real(ci) + ri; // cosθi + Ri

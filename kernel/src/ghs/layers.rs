@@ -38,55 +38,59 @@ gpu_enum! {
 
 /// First Fresnel moment `C1(η) = ∫₀¹ F(μ; η) μ dμ` (d'Eon & Irving 2011 fit; `η` is the
 /// ratio incident-side / transmitted-side index).
-#[inline]
-fn fresnel_moment1(eta: f32) -> f32 {
-    let e = eta;
+#[inline(always)]
+fn fresnel_moment1<R: Real>(e: R) -> R {
+    let c = R::splat;
     let e2 = e * e;
     let e3 = e2 * e;
     let e4 = e3 * e;
     let e5 = e4 * e;
-    if e < 1.0 {
-        0.45966 - 1.73965 * e + 3.37668 * e2 - 3.904945 * e3 + 2.49277 * e4 - 0.68441 * e5
-    } else {
-        -4.61686 + 11.1136 * e - 10.4646 * e2 + 5.11455 * e3 - 1.27198 * e4 + 0.12746 * e5
-    }
+    let below = c(0.45966) - c(1.73965) * e + c(3.37668) * e2 - c(3.904945) * e3 + c(2.49277) * e4
+        - c(0.68441) * e5;
+    let above = c(-4.61686) + c(11.1136) * e - c(10.4646) * e2 + c(5.11455) * e3 - c(1.27198) * e4
+        + c(0.12746) * e5;
+    R::select(e.lt(c(1.0)), below, above)
 }
 
 /// `F_dr(η)`: diffuse (cosine-weighted hemispherical) reflectance of a flat interface for
 /// light arriving from outside onto relative index `η` (H&P notation; `F_dr(1/η)` is the
 /// reflectance seen from inside). Valid for `η ∈ [1/3, 3]` (clamped).
-#[inline]
-pub fn fresnel_diffuse_reflectance(eta: f32) -> f32 {
-    let e = math::clamp(eta, 1.0 / 3.0, 3.0);
-    math::clamp(2.0 * fresnel_moment1(1.0 / e), 0.0, 1.0)
+#[inline(always)]
+pub fn fresnel_diffuse_reflectance<R: Real>(eta: R) -> R {
+    let c = R::splat;
+    let e = math::clamp(eta, c(1.0 / 3.0), c(3.0));
+    math::clamp(c(2.0) * fresnel_moment1(c(1.0) / e), c(0.0), c(1.0))
 }
 
 /// Interface transmittance `T` (Eq. 44).
 #[inline(always)]
-pub fn transmittance<R: Real>(cos_i: R, cos_o: R, n: f32, k: f32) -> R {
+pub fn transmittance<R: Real>(cos_i: R, cos_o: R, n: R, k: R) -> R {
     let one = R::splat(1.0);
     (one - fresnel(cos_i, n, k)) * (one - fresnel(cos_o, n, k))
 }
 
 /// Inter-reflection factor of the plastic layer (the bracket of Eq. 49 / its correction).
-#[inline]
-fn plastic_series(rho_d: f32, n: f32, form: LayerForm) -> f32 {
-    let f_int = fresnel_diffuse_reflectance(1.0 / n);
+#[inline(always)]
+fn plastic_series<R: Real>(rho_d: f32, n: R, form: LayerForm) -> R {
+    let c = R::splat;
+    let f_int = fresnel_diffuse_reflectance(c(1.0) / n);
     match form {
-        LayerForm::Published => 1.0 / (1.0 - rho_d * (1.0 / math::PI) * f_int),
+        LayerForm::Published => c(1.0) / (c(1.0) - c(rho_d) * c(1.0 / math::PI) * f_int),
         // a white base under total internal reflection (F_int → 1) traps light: bound the
         // geometric series at 10⁴ bounces' worth
-        LayerForm::EnergyConserving => 1.0 / (n * n * math::max(1.0 - rho_d * f_int, 1.0e-4)),
+        LayerForm::EnergyConserving => {
+            c(1.0) / (n * n * math::max(c(1.0) - c(rho_d) * f_int, c(1.0e-4)))
+        }
     }
 }
 
 /// `ρ_plastic` (Eq. 49) for diffuse reflectance `rho_d` under an interface of index `n + ik`.
 #[inline(always)]
-pub fn plastic<R: Real>(cos_i: R, cos_o: R, n: f32, k: f32, rho_d: f32, form: LayerForm) -> R {
+pub fn plastic<R: Real>(cos_i: R, cos_o: R, n: R, k: R, rho_d: f32, form: LayerForm) -> R {
     transmittance(cos_i, cos_o, n, k)
         * R::splat(rho_d)
         * R::splat(1.0 / math::PI)
-        * R::splat(plastic_series(rho_d, n, form))
+        * plastic_series(rho_d, n, form)
 }
 
 /// `E_D` of the plastic layer (Eq. 52) for lobe selection.
@@ -97,27 +101,28 @@ pub fn plastic_energy(n: f32, k: f32, rho_d: f32, form: LayerForm) -> f32 {
 
 /// Jensen's diffuse reflectance `R_d` of the medium (Eq. 47 / 54 without `T/π`), `α` the
 /// single-scattering albedo.
-#[inline]
-fn subsurface_rd(n: f32, albedo: f32, form: LayerForm) -> f32 {
-    let f_dr = fresnel_diffuse_reflectance(1.0 / n);
+#[inline(always)]
+fn subsurface_rd<R: Real>(n: R, albedo: f32, form: LayerForm) -> R {
+    let c = R::splat;
+    let f_dr = fresnel_diffuse_reflectance(c(1.0) / n);
     let a_f = match form {
-        LayerForm::Published => (1.0 - f_dr) / (1.0 + f_dr),
-        LayerForm::EnergyConserving => (1.0 + f_dr) / math::max(1.0 - f_dr, 1.0e-6),
+        LayerForm::Published => (c(1.0) - f_dr) / (c(1.0) + f_dr),
+        LayerForm::EnergyConserving => (c(1.0) + f_dr) / math::max(c(1.0) - f_dr, c(1.0e-6)),
     };
     let sigma_tr = math::sqrt0(3.0 * (1.0 - albedo));
-    albedo * 0.5 * math::exp(-sigma_tr) * (1.0 + math::exp(-(4.0 / 3.0) * a_f * sigma_tr))
+    c(albedo * 0.5 * math::exp(-sigma_tr)) * (c(1.0) + (c(-(4.0 / 3.0)) * a_f * c(sigma_tr)).exp())
 }
 
 /// `ρ_SSS = single + multi` (Eqs. 45–48); the refracted cosines use the real part `n`.
 #[inline(always)]
-pub fn subsurface<R: Real>(cos_i: R, cos_o: R, n: f32, k: f32, albedo: f32, form: LayerForm) -> R {
+pub fn subsurface<R: Real>(cos_i: R, cos_o: R, n: R, k: R, albedo: f32, form: LayerForm) -> R {
     let c = R::splat;
     let t = transmittance(cos_i, cos_o, n, k);
-    let inv_n2 = c(1.0 / (n * n));
+    let inv_n2 = c(1.0) / (n * n);
     let cti = math::sqrt0(c(1.0) - (c(1.0) - cos_i * cos_i) * inv_n2);
     let cto = math::sqrt0(c(1.0) - (c(1.0) - cos_o * cos_o) * inv_n2);
     let single = c(albedo) * t * c(0.25 / math::PI) / math::max(cti + cto, c(1.0e-6));
-    let multi = t * c(1.0 / math::PI) * c(subsurface_rd(n, albedo, form));
+    let multi = t * c(1.0 / math::PI) * subsurface_rd(n, albedo, form);
     single + multi
 }
 

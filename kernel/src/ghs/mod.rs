@@ -30,6 +30,7 @@ pub mod presets;
 pub mod spread;
 pub mod tables;
 
+use crate::conductor::{self, Conductor};
 use crate::fresnel::fresnel;
 use crate::lane::{Real, V3, branch};
 use crate::math;
@@ -94,8 +95,8 @@ pub struct GhsParams {
     pub layer_form: u32,
     /// `ρd` (plastic) or `α` (subsurface), in [0, 1].
     pub layer_albedo: f32,
-    /// Explicit padding.
-    pub pad: u32,
+    /// A [`Conductor`] as `u32`: when not `None`, its spectral IOR replaces `n`, `k`.
+    pub conductor: u32,
 }
 
 const _: () = assert!(core::mem::size_of::<GhsParams>() == 48);
@@ -143,7 +144,7 @@ impl GhsParams {
             layer: 0,
             layer_form: 0,
             layer_albedo: 0.0,
-            pad: 0,
+            conductor: Conductor::None as u32,
         }
     }
 
@@ -180,10 +181,10 @@ pub struct Ghs<'t, R = f32> {
     pub beta_m: f32,
     /// The diffraction lobe.
     pub spread: KCorrelation<R>,
-    /// IOR real part.
-    pub n: f32,
+    /// IOR real part (per lane: a spectral IOR differs between wavelengths).
+    pub n: R,
     /// IOR imaginary part.
-    pub k: f32,
+    pub k: R,
     /// Diffraction colour.
     pub diff_color: DiffColor,
     /// Layer type.
@@ -213,6 +214,12 @@ impl<'t, R: Real> Ghs<'t, R> {
     #[inline(always)]
     pub fn with_g1_table(params: &GhsParams, lambda_um: R, g1_table: G1Table<'t>) -> Self {
         let lambda = sane(lambda_um, 1.0e-3, 1.0e3);
+        let (n, k) = conductor::ior(
+            Conductor::from_u32(params.conductor),
+            lambda * R::splat(1.0e3),
+            params.n,
+            params.k,
+        );
         let p = sane(params.p, g1::P_MIN, g1::P_MAX);
         let beta = sane(params.beta, limits::BETA_MIN, limits::BETA_MAX);
         let ndf = GenBeckmann::new(beta, p);
@@ -233,8 +240,8 @@ impl<'t, R: Real> Ghs<'t, R> {
             ln_p: math::ln(p),
             beta_m: beta * g1::mean_slope(p),
             spread: KCorrelation { b, c },
-            n: sane(params.n, 1.0e-3, 1.0e3),
-            k: sane(params.k, 0.0, 1.0e3),
+            n: sane(n, 1.0e-3, 1.0e3),
+            k: sane(k, 0.0, 1.0e3),
             diff_color: DiffColor::from_u32(params.diff_color),
             layer: Layer::from_u32(params.layer),
             layer_form: LayerForm::from_u32(params.layer_form),

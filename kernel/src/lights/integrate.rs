@@ -769,10 +769,10 @@ pub fn light_integrals_in<S: ScratchSet>(
             k += 1;
         }
     }
-    let f = material.reflectance(wc, wo);
     let mut k = 0;
     while k < n && k < MAX_LAMBDAS {
         if lambda[k] > 0.0 {
+            let f = material.reflectance(wc, wo, lambdas_nm[k]);
             let r = f * power[k] / (math::PI * sigma * sigma);
             out[k] = if r.is_finite() && r > 0.0 { r } else { 0.0 };
         }

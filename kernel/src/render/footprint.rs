@@ -153,11 +153,11 @@ pub fn velinov_footprint_brdf_spectral<S: ScratchSet>(
             }
         }
     }
-    let f = material.reflectance(wi, wo);
     let mut j = 0;
     while j < n {
         let lambda = um_from_nm(lambdas_nm[j]);
         if lambda > 0.0 {
+            let f = material.reflectance(wi, wo, lambdas_nm[j]);
             let mut total = sum[j];
             if base {
                 let b = base_response(xi[j], sigma);

@@ -471,11 +471,11 @@ fn area_light<S: ScratchSet, O: Occlusion>(
     let closed = shading::closed_form_area(m);
     let scale = w_vis / w_all;
     // A smooth base of a quadrature model: its mirror image of the light, scaled by the
-    // visible fraction like the closed form (the same at every wavelength).
+    // visible fraction like the closed form (its reflectance per wavelength below).
     let mirror = if closed {
         0.0
     } else {
-        shading::area_mirror_radiance(m, sp, wo, light, lk, fp) * scale
+        shading::area_mirror_weight(m, sp, wo, light, lk, fp)
     };
     let n_lambda = frame.wavelength_count();
     let mode = frame.mode();
@@ -516,7 +516,10 @@ fn area_light<S: ScratchSet, O: Occlusion>(
         let mut j = 0;
         while j < count && j < MAX_LAMBDAS {
             let lam = wl.nm[j];
-            let mut l = closed_l[j] * scale + mirror;
+            let mut l = closed_l[j] * scale;
+            if mirror > 0.0 {
+                l += mirror * shading::mirror_reflectance(m, wo, lam) * light.emission * scale;
+            }
             if nodes {
                 let mut slot = 0;
                 while slot < area::MAX_NODES as usize {

@@ -330,21 +330,33 @@ pub fn velinov_area_light<S: ScratchSet>(
         fp,
         set,
     );
-    let mirror = mirror_in_region(m, sp, wo, &region, fp, set);
+    let mirror = mirror_weight_in_region(m, sp, wo, &region, fp, set);
     let mut k = 0;
     while k < count && k < MAX_LAMBDAS {
-        l[k] = (l[k] + mirror) * light.emission;
+        if mirror > 0.0 {
+            l[k] += mirror * mirror_reflectance(m, wo, lambdas_nm[k]);
+        }
+        l[k] *= light.emission;
         k += 1;
     }
     l
 }
 
-/// The mirror part of a smooth base (or of Velinov's Gaussian base, a mirror at light
-/// scale) inside a light's `region`, per unit radiance: `(1 − ρ)·F(wm, wo)` when the mirror
-/// direction `wm` of `wo` lies in the light, else 0 (Werner §5, Velinov Eq. 7). `ρ` is the
+/// `F(wm, wo)` at `lambda_nm`, `wm` the mirror direction of `wo`: the reflectance of a
+/// smooth (or Gaussian) base's mirror image.
+#[inline]
+pub fn mirror_reflectance(m: &ShadeMaterial, wo: Vec3, lambda_nm: f32) -> f32 {
+    m.material
+        .reflectance(Vec3::new(-wo.x, -wo.y, wo.z), wo, lambda_nm)
+}
+
+/// The weight of the mirror part of a smooth base (or of Velinov's Gaussian base, a mirror
+/// at light scale) inside a light's `region`, per unit radiance and reflectance: `1 − ρ`
+/// when the mirror direction `wm` of `wo` lies in the light, else 0 (Werner §5, Velinov
+/// Eq. 7; the caller multiplies by [`mirror_reflectance`] per wavelength). `ρ` is the
 /// scratch density at the point, or averaged over the footprint `fp` when it has one
 /// (Velinov Eq. 18).
-fn mirror_in_region<S: ScratchSet>(
+fn mirror_weight_in_region<S: ScratchSet>(
     m: &ShadeMaterial,
     sp: &SurfacePoint,
     wo: Vec3,
@@ -357,19 +369,19 @@ fn mirror_in_region<S: ScratchSet>(
     if !(mirror_base && wm.z > 0.0 && region.contains(wm)) {
         return 0.0;
     }
-    let weight = if fp.a1 > 0.0 && fp.a2 > 0.0 {
+    if fp.a1 > 0.0 && fp.a2 > 0.0 {
         math::max(1.0 - footprint_density(m.table.sigma_um, fp, set), 0.0)
     } else {
         base_weight(m, sp.x_um, set)
-    };
-    weight * m.material.reflectance(wm, wo)
+    }
 }
 
-/// The mirror part of a smooth base under a sphere or triangle light for the models the
-/// renderer integrates by quadrature (`werner_blended`): `(1 − ρc)·F·L` when the mirror
-/// direction lies in the light, unoccluded (a delta base cannot be integrated over nodes;
-/// [`velinov_area_light`] adds it for `velinov`).
-pub fn area_mirror_radiance<S: ScratchSet>(
+/// The weight of the mirror part of a smooth base under a sphere or triangle light for the
+/// models the renderer integrates by quadrature (`werner_blended`): `1 − ρc` when the mirror
+/// direction lies in the light, else 0; the radiance is this times
+/// [`mirror_reflectance`] and the light's radiance, unoccluded (a delta base cannot be
+/// integrated over nodes; [`velinov_area_light`] adds it for `velinov`).
+pub fn area_mirror_weight<S: ScratchSet>(
     m: &ShadeMaterial,
     sp: &SurfacePoint,
     wo: Vec3,
@@ -381,7 +393,7 @@ pub fn area_mirror_radiance<S: ScratchSet>(
         return 0.0;
     }
     match LightRegion::new(&local_light(sp, light)) {
-        Some(region) => mirror_in_region(m, sp, wo, &region, fp, &lk.scratches) * light.emission,
+        Some(region) => mirror_weight_in_region(m, sp, wo, &region, fp, &lk.scratches),
         None => 0.0,
     }
 }

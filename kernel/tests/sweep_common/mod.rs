@@ -300,7 +300,7 @@ pub fn ghs_params(r: &Row, prefix: &str) -> GhsParams {
         layer: u("layer"),
         layer_form: u("layer_form"),
         layer_albedo: f("albedo"),
-        pad: 0,
+        conductor: 0,
     }
 }
 
