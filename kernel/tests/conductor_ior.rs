@@ -61,7 +61,7 @@ fn curves_match_the_measured_tables() {
                 "{name} at {nm} nm: kernel ({kn}, {kk}), table ({n}, {k}), rel. {err:.2e}"
             );
         }
-        println!("{name:9}: worst relative difference {worst:.2e} (allowed {tol:.0e})");
+        println!("{name:9}: worst relative difference {worst:.2e} (allowed {tol:.1e})");
     }
 }
 
