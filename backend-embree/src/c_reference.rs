@@ -267,7 +267,7 @@ pub struct CProgram {
 
 impl CProgram {
     /// Starts `exe` (from [`compile`]) on `workload` (from [`write_workload`]) with the Embree
-    /// library this crate loads ([`crate::ffi::LIBRARY_PATH`]) and the device configuration
+    /// library this crate loads ([`crate::ffi::library_path`]) and the device configuration
     /// `device_config` (use the one the Rust [`crate::Device`] was made with), and waits until
     /// its scene is committed.
     pub fn start(
@@ -276,7 +276,7 @@ impl CProgram {
         workload: &Path,
     ) -> Result<CProgram, CReferenceError> {
         let mut child = Command::new(exe)
-            .arg(crate::ffi::LIBRARY_PATH)
+            .arg(crate::ffi::library_path())
             .arg(device_config)
             .arg(workload)
             .stdin(Stdio::piped())

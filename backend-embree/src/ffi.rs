@@ -396,6 +396,16 @@ functions! {
 /// Path of the Embree library found by the build script.
 pub const LIBRARY_PATH: &str = env!("SCRATCHWAVE_EMBREE_LIBRARY");
 
+/// The Embree library this process loads: `SCRATCHWAVE_EMBREE_LIBRARY` from the
+/// environment when set and not empty (binaries copied to another machine, where the
+/// build machine's path does not exist), else [`LIBRARY_PATH`].
+pub fn library_path() -> std::path::PathBuf {
+    match std::env::var_os("SCRATCHWAVE_EMBREE_LIBRARY") {
+        Some(path) if !path.is_empty() => path.into(),
+        _ => LIBRARY_PATH.into(),
+    }
+}
+
 struct Loaded {
     functions: Functions,
     // Never unloaded: the function pointers above stay valid for the life of the process
@@ -410,9 +420,11 @@ static EMBREE: OnceLock<Result<Loaded, String>> = OnceLock::new();
 pub fn api() -> Result<&'static Functions, &'static str> {
     let loaded = EMBREE.get_or_init(|| {
         // SAFETY: loading runs Embree's and TBB's static initializers, which have no
-        // preconditions; the path is the library the build script verified exists.
-        let library = unsafe { libloading::Library::new(LIBRARY_PATH) }
-            .map_err(|e| format!("cannot load {LIBRARY_PATH}: {e}"))?;
+        // preconditions; the path is the library the build script verified exists, or the
+        // one the user named instead.
+        let path = library_path();
+        let library = unsafe { libloading::Library::new(&path) }
+            .map_err(|e| format!("cannot load {}: {e}", path.display()))?;
         // SAFETY: it is an Embree 4 library (checked by version after device creation).
         let functions = unsafe { Functions::resolve(&library) }?;
         Ok(Loaded {

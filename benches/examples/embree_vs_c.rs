@@ -174,7 +174,7 @@ fn run() -> Result<bool, String> {
     println!(
         "Embree {} ({}), device config {:?}; CPU {}; {} cores; load average {}",
         device.version(),
-        scratchwave_embree::ffi::LIBRARY_PATH,
+        scratchwave_embree::ffi::library_path().display(),
         o.config,
         first_line_of("/proc/cpuinfo", "model name"),
         std::thread::available_parallelism().map_or(0, |n| n.get()),
