@@ -58,6 +58,37 @@ impl Pace {
         first: 1024,
         target: Duration::from_millis(100),
     };
+
+    /// The environment variable [`Pace::from_env`] reads: the slice target in whole
+    /// milliseconds.
+    pub const ENV: &'static str = "SCRATCHWAVE_PACE_MS";
+
+    /// [`Pace::DEFAULT`] with the target from `SCRATCHWAVE_PACE_MS` when it is set (1 to
+    /// 60 000 ms): a GPU that drives no display can take longer submissions, which keep
+    /// more of it busy while a slice's slowest invocations finish. Any other value is
+    /// [`SpirvError::BadEnv`].
+    pub fn from_env() -> Result<Pace> {
+        Self::from_setting(std::env::var_os(Self::ENV).as_deref())
+    }
+
+    /// [`Pace::from_env`] for the variable's value (`None`: not set).
+    pub fn from_setting(value: Option<&std::ffi::OsStr>) -> Result<Pace> {
+        let Some(value) = value else {
+            return Ok(Self::DEFAULT);
+        };
+        let text = value.to_string_lossy();
+        match text.trim().parse::<u64>() {
+            Ok(ms) if (1..=60_000).contains(&ms) => Ok(Pace {
+                target: Duration::from_millis(ms),
+                ..Self::DEFAULT
+            }),
+            _ => Err(SpirvError::BadEnv {
+                name: Self::ENV,
+                value: text.into_owned(),
+                expected: "whole milliseconds from 1 to 60000",
+            }),
+        }
+    }
 }
 
 /// Wall-clock time of each step of a dispatch, each ended by waiting for the device.
@@ -404,4 +435,24 @@ struct Plan {
     /// Elements per dispatch.
     chunk: usize,
     output_bytes: u64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ffi::OsStr;
+
+    #[test]
+    fn pace_setting_sets_the_target_or_names_the_variable() {
+        assert_eq!(Pace::from_setting(None).unwrap(), Pace::DEFAULT);
+        let long = Pace::from_setting(Some(OsStr::new(" 2000 "))).unwrap();
+        assert_eq!(long.target, Duration::from_millis(2000));
+        assert_eq!(long.first, Pace::DEFAULT.first);
+        for bad in ["0", "60001", "-5", "1.5", "fast", ""] {
+            let error = Pace::from_setting(Some(OsStr::new(bad))).unwrap_err();
+            let text = error.to_string();
+            assert!(text.starts_with("SCRATCHWAVE_PACE_MS: must be"), "{text}");
+            assert!(text.contains(&format!("{bad:?}")), "{text}");
+        }
+    }
 }

@@ -7,6 +7,16 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 #[non_exhaustive]
 pub enum SpirvError {
+    /// An environment variable the backend reads holds a value it cannot use.
+    #[error("{name}: must be {expected}, got {value:?}")]
+    BadEnv {
+        /// The variable.
+        name: &'static str,
+        /// Its value as set.
+        value: String,
+        /// What it accepts.
+        expected: &'static str,
+    },
     /// No Vulkan driver answered: the loader (`libvulkan1`) or every ICD is missing.
     #[error(
         "no Vulkan device found: install the Vulkan loader and the lavapipe CPU driver \

@@ -51,9 +51,11 @@ pub struct Gpu {
 }
 
 impl Gpu {
-    /// Opens the adapter [`AdapterChoice::from_env`] selects (`SCRATCHWAVE_ADAPTER`).
+    /// Opens the adapter [`AdapterChoice::from_env`] selects (`SCRATCHWAVE_ADAPTER`), with
+    /// the pace [`Pace::from_env`] reads (`SCRATCHWAVE_PACE_MS`).
     pub fn new() -> Result<Self> {
-        Self::with_adapter(&AdapterChoice::from_env())
+        let pace = Pace::from_env()?;
+        Ok(Self::with_adapter(&AdapterChoice::from_env())?.with_pace(pace))
     }
 
     /// Opens the adapter `choice` selects among the machine's Vulkan adapters.
