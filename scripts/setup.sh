@@ -84,7 +84,8 @@ else
   done
 fi
 
-if [ -x scripts/fetch-embree.sh ]; then
+# EMBREE_DIR names another Embree 4 install (backend-embree/build.rs); then fetch none.
+if [ -z "${EMBREE_DIR:-}" ] && [ -x scripts/fetch-embree.sh ]; then
   scripts/fetch-embree.sh
 fi
 log "ready"
