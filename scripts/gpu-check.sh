@@ -4,13 +4,16 @@
 # table and light throughput of every backend, and the frame time of the Velinov Table 2
 # scene on every backend, printed as one report.
 #
-#   scripts/gpu-check.sh                      # builds here (setup, release build), then checks
+#   scripts/gpu-check.sh                      # builds and packs here (scripts/gpu-bundle.sh), then checks
 #   scripts/gpu-check.sh --bundle FILE.tar.xz # runs the binaries scripts/gpu-bundle.sh packed
 #
 # SCRATCHWAVE_ADAPTER defaults to gpu. Needs a Vulkan loader (libvulkan1) and the GPU's
 # Vulkan driver; without them the spirv checks fail with the reason. Exit status 1 if any
 # check failed or a step did not finish. Output files go to target/gpu-check.
 set -euo pipefail
+# The archive as the caller named it, before changing to the repository root.
+archive=""
+if [ "${1:-}" = "--bundle" ] && [ -n "${2:-}" ]; then archive=$(realpath -m "$2"); fi
 cd "$(dirname "$0")/.."
 export SCRATCHWAVE_ADAPTER="${SCRATCHWAVE_ADAPTER:-gpu}"
 export CARGO_TERM_COLOR=never
@@ -18,29 +21,27 @@ out=target/gpu-check
 mkdir -p "$out"
 start=$(date +%s)
 if [ "${1:-}" = "--bundle" ]; then
-  [ -f "${2:-}" ] || { echo "error: --bundle needs the archive scripts/gpu-bundle.sh wrote" >&2; exit 2; }
-  bin=$out/bundle
-  rm -rf "$bin"
-  mkdir -p "$bin"
-  tar -C "$bin" -xJf "$2"
-  export SCRATCHWAVE_EMBREE_LIBRARY="$PWD/$bin/embree/libembree4.so.4"
-  if [ "$(cat "$bin/commit")" != "$(git rev-parse HEAD 2>/dev/null || echo unknown)" ]; then
-    echo "note: the bundle is of commit $(cat "$bin/commit"), the checkout is not" >&2
-  fi
-  examples=$bin
+  [ -f "$archive" ] || { echo "error: --bundle needs the archive scripts/gpu-bundle.sh wrote" >&2; exit 2; }
+  bundle=$archive
 else
-  scripts/setup.sh
-  cargo build --release --quiet -p scratchwave-conformance --bin scratchwave --example scene_timing
-  cargo build --release --quiet -p scratchwave-benches --features spirv --example throughput
-  bin=${CARGO_TARGET_DIR:-target}/release
-  examples=$bin/examples
+  # One list of binaries: build them here through the packing script, then run its archive.
+  bundle=$out/gpu-bundle.tar.xz
+  scripts/gpu-bundle.sh "$bundle"
+fi
+bin=$out/bundle
+rm -rf "$bin"
+mkdir -p "$bin"
+tar -C "$bin" -xJf "$bundle"
+export SCRATCHWAVE_EMBREE_LIBRARY="$PWD/$bin/embree/libembree4.so.4"
+if [ ! -f "$bin/commit" ] || [ "$(cat "$bin/commit")" != "$(git rev-parse HEAD 2>/dev/null || echo unknown)" ]; then
+  echo "note: the bundle is of commit $(cat "$bin/commit" 2>/dev/null || echo unknown), the checkout is not" >&2
 fi
 built=$(date +%s)
 status=0
 "$bin/scratchwave" run --cases conformance/cases --cases reference/golden/tables \
   --scenes conformance/scenes --spirv-scenes yes --out "$out" >"$out/run.txt" 2>&1 || status=$?
-"$examples/throughput" 1000000 >"$out/throughput.txt" 2>&1 || status=$?
-"$examples/scene_timing" benches/scenes/velinov_table2.json 3 >"$out/timing.txt" 2>&1 || status=$?
+"$bin/throughput" 1000000 >"$out/throughput.txt" 2>&1 || status=$?
+"$bin/scene_timing" benches/scenes/velinov_table2.json 3 >"$out/timing.txt" 2>&1 || status=$?
 end=$(date +%s)
 echo "# scratchwave GPU check (adapter: $SCRATCHWAVE_ADAPTER)"
 grep -E '^backends:|^note:|^conformance:' "$out/run.txt" || true
