@@ -12,11 +12,18 @@
 //!   across the scratch is done in closed form (an `erf` difference) and the one along it by
 //!   panelled Gauss–Legendre in `θ` with `u = u_c + U sin θ` (smooth at the ellipse's ends),
 //!   panels split around the segment ends and where the ellipse boundary crosses the
-//!   scratch's Gaussian band (lines `v = kσ` parallel to it);
+//!   scratch's Gaussian band (lines `v = kσ` parallel to it); the 8 nodes of a panel are one
+//!   formula over [`Real`], evaluated in one [`Lanes<8>`](crate::lane::Lanes) on the CPU
+//!   and one node at a time on SPIR-V ([`Nodes`]);
 //! * [`rho_p_eq18`]: Eq. 18 without its spurious factor 2 (`W l / A_P`), and
 //!   [`rho_p_accurate`] by the same quadrature as `eta_p_accurate`.
 
+#[cfg(not(target_arch = "spirv"))]
+use crate::lane::Lanes;
+use crate::lane::{Real, branch};
 use crate::math;
+use crate::math::gauss_fourier_centered_lanes;
+use crate::math::portable::sin_cos_within_half_pi;
 use crate::math::quadrature::{GL8_W as GL_W, GL8_X as GL_X};
 use crate::scratch::Scratch;
 use bytemuck::{Pod, Zeroable};
@@ -124,14 +131,46 @@ pub fn rho_p_eq18(s: &Scratch, e: &Ellipse) -> f32 {
     s.width * contained_length(s, e) / e.area()
 }
 
+/// How the accurate averages evaluate the 8 Gauss–Legendre nodes of each panel: the same
+/// formula ([`Real`]-generic) either way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Nodes {
+    /// One `f32` node after the other (what SPIR-V runs).
+    OneAtATime,
+    /// All eight at once in one [`Lanes<8>`](crate::lane::Lanes) (8 f32 per instruction
+    /// with AVX2, two 4-wide halves with SSE2 or NEON). SPIR-V has no lanes and evaluates
+    /// one node at a time instead.
+    Lanes,
+}
+
+impl Nodes {
+    /// The kernel's choice: [`Nodes::Lanes`] on the CPU, [`Nodes::OneAtATime`] on SPIR-V.
+    pub const DEFAULT: Nodes = if cfg!(target_arch = "spirv") {
+        Nodes::OneAtATime
+    } else {
+        Nodes::Lanes
+    };
+}
+
 /// `(1/A_P) ∫_P |η_s(x)|² dx`, accurate for every footprint size (see the module docs).
 pub fn eta_p_accurate(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
-    footprint_integral(s, e, sigma, true)
+    eta_p_accurate_by(s, e, sigma, Nodes::DEFAULT)
 }
 
 /// `(1/A_P) ∫_P ρc(x) dx` for one scratch, accurate for every footprint size.
 pub fn rho_p_accurate(s: &Scratch, e: &Ellipse, sigma: f32) -> f32 {
-    footprint_integral(s, e, sigma, false) * s.width / (math::TAU * sigma * sigma)
+    rho_p_accurate_by(s, e, sigma, Nodes::DEFAULT)
+}
+
+/// [`eta_p_accurate`] with the nodes evaluated as `nodes` says (tests and benchmarks compare
+/// the two).
+pub fn eta_p_accurate_by(s: &Scratch, e: &Ellipse, sigma: f32, nodes: Nodes) -> f32 {
+    footprint_integral(s, e, sigma, true, nodes)
+}
+
+/// [`rho_p_accurate`] with the nodes evaluated as `nodes` says.
+pub fn rho_p_accurate_by(s: &Scratch, e: &Ellipse, sigma: f32, nodes: Nodes) -> f32 {
+    footprint_integral(s, e, sigma, false, nodes) * s.width / (math::TAU * sigma * sigma)
 }
 
 /// Number of breakpoint offsets per feature.
@@ -154,7 +193,7 @@ const MAX_BREAKS: usize = 2 + 5 * N_OFFSETS;
 
 /// `(1/A_P)∫_P |η_s|²` (`squared`) or `(1/A_P)∫_P exp(−v²/(2σ²)) g(u)` (not squared),
 /// with `u, v` the scratch-frame coordinates of `x` and `g(u) = ∫_seg exp(−(s−u)²/(2σ²)) ds`.
-fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f32 {
+fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool, nodes: Nodes) -> f32 {
     let Some(frame) = s.frame() else { return 0.0 };
     if !(e.a1 > 0.0 && e.a2 > 0.0 && sigma > 0.0) {
         return 0.0;
@@ -282,42 +321,118 @@ fn footprint_integral(s: &Scratch, e: &Ellipse, sigma: f32, squared: bool) -> f3
         o += 1;
     }
     sort(&mut br, n);
+    let chords = Chords {
+        eu,
+        ev,
+        half_u,
+        sqrt_qc,
+        qb_over_qc: qb / qc,
+        half_len: frame.half_len,
+        sigma,
+        sd,
+        squared,
+    };
     let mut total = 0.0;
     let mut p = 0;
     while p + 1 < n {
         let (t0, t1) = (br[p], br[p + 1]);
-        let (half, mid) = (0.5 * (t1 - t0), 0.5 * (t0 + t1));
-        let mut i = 0;
-        while i < 8 {
-            let x = if i < 4 { -GL_X[i] } else { GL_X[i - 4] };
-            let w = GL_W[if i < 4 { i } else { i - 4 }];
-            let th = mid + half * x;
-            let (st, ct) = (math::sin(th), math::cos(th));
-            let du = half_u * st;
-            let u = eu + du;
-            // chord across the scratch at this u: v = ev − (qb/qc) du ± half_v
-            let half_v = ct / sqrt_qc;
-            let vc = ev - qb / qc * du;
-            // Nodes whose chord misses the band |v| < 8σ, or that lie more than 8σ beyond a
-            // segment end, carry a weight below e^{-32}: skip them before any erf.
-            let reach = 8.0 * sigma;
-            let off_band = vc - half_v > reach || vc + half_v < -reach;
-            let off_ends = math::abs(u) > frame.half_len + reach;
-            let inner = if off_band || off_ends {
-                0.0
-            } else {
-                // Both intervals as centre and half length: a short segment or chord several
-                // σ out loses its length to the rounding of its ends otherwise (2e-4 for a
-                // 1e-3σ footprint 5σ from the scratch; issue #20).
-                let g = math::gauss_interval_centered(-u, frame.half_len, sigma);
-                g * if squared { g } else { 1.0 } * math::gauss_interval_centered(vc, half_v, sd)
-            };
-            total += w * half * inner * half_u * ct;
-            i += 1;
-        }
+        let half = 0.5 * (t1 - t0);
+        total += half * panel(&chords, 0.5 * (t0 + t1), half, nodes);
         p += 1;
     }
-    total / e.area()
+    // du = U cos θ dθ.
+    total * half_u / e.area()
+}
+
+/// What the chord integral at a node needs: the ellipse in the scratch frame (centre
+/// `(eu, ev)`, half extent `U` along the scratch, chord half length `cos θ / √qc`, chord
+/// centres sliding by `−qb/qc` per unit of `u`) and the two Gaussians.
+#[derive(Clone, Copy)]
+struct Chords {
+    eu: f32,
+    ev: f32,
+    half_u: f32,
+    sqrt_qc: f32,
+    qb_over_qc: f32,
+    half_len: f32,
+    sigma: f32,
+    sd: f32,
+    squared: bool,
+}
+
+/// The 8-point Gauss–Legendre node `i` on `[−1, 1]` (ascending) and its weight.
+#[inline(always)]
+fn gl_node(i: usize) -> (f32, f32) {
+    if i < 4 {
+        (-GL_X[i], GL_W[i])
+    } else {
+        (GL_X[i - 4], GL_W[i - 4])
+    }
+}
+
+/// One node of the θ quadrature (the one formula, per lane): at `θ`, `u = eu + U sin θ`, the chord across the scratch at that `u` is integrated
+/// in closed form and multiplied by the along-scratch factor and by `w cos θ` (the node
+/// weight and the Jacobian's angular part).
+#[inline(always)]
+fn node_value<R: Real>(c: &Chords, theta: R, w: R) -> R {
+    let k = R::splat;
+    let (st, ct) = sin_cos_within_half_pi(theta);
+    let du = k(c.half_u) * st;
+    let u = k(c.eu) + du;
+    // chord across the scratch at this u: v = ev − (qb/qc) du ± half_v
+    let half_v = ct / k(c.sqrt_qc);
+    let vc = k(c.ev) - k(c.qb_over_qc) * du;
+    // Nodes whose chord misses the band |v| < 8σ, or that lie more than 8σ beyond a
+    // segment end, carry a weight below e^{-32}: skip them before any erf.
+    let reach = k(8.0 * c.sigma);
+    let off_band = (vc - half_v).gt(reach) | (vc + half_v).lt(-reach);
+    let off_ends = u.abs().gt(k(c.half_len) + reach);
+    let inner = branch!(
+        !(off_band | off_ends),
+        {
+            // Both intervals as centre and half length: a short segment or chord several
+            // σ out loses its length to the rounding of its ends otherwise (2e-4 for a
+            // 1e-3σ footprint 5σ from the scratch; issue #20).
+            let g = gauss_fourier_centered_lanes(-u, k(c.half_len), k(c.sigma), k(0.0)).re;
+            let across = gauss_fourier_centered_lanes(vc, half_v, k(c.sd), k(0.0)).re;
+            if c.squared {
+                g * g * across
+            } else {
+                g * across
+            }
+        },
+        k(0.0)
+    );
+    w * inner * ct
+}
+
+/// `Σ_i w_i node_value(θ_i)` over the panel `[mid − half, mid + half]` (nodes in ascending
+/// order), by `nodes`.
+#[inline]
+fn panel(c: &Chords, mid: f32, half: f32, nodes: Nodes) -> f32 {
+    #[cfg(not(target_arch = "spirv"))]
+    if nodes == Nodes::Lanes {
+        let theta = Lanes(core::array::from_fn(|i| mid + half * gl_node(i).0));
+        let w = Lanes(core::array::from_fn(|i| gl_node(i).1));
+        let v: Lanes<8> = node_value(c, theta, w);
+        let mut sum = 0.0;
+        let mut i = 0;
+        while i < 8 {
+            sum += v.0[i];
+            i += 1;
+        }
+        return sum;
+    }
+    #[cfg(target_arch = "spirv")]
+    let _ = nodes;
+    let mut sum = 0.0;
+    let mut i = 0;
+    while i < 8 {
+        let (x, w) = gl_node(i);
+        sum += node_value(c, mid + half * x, w);
+        i += 1;
+    }
+    sum
 }
 
 /// 1/√2.

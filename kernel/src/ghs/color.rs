@@ -9,6 +9,7 @@
 //! Fresnel amplitudes and `Q = 2F` (so the lobe colour `Q/2` equals `F` there; tested).
 //! Only squared magnitudes are needed, so no complex division is formed.
 
+use crate::fresnel::eta2_minus_1;
 use crate::lane::{Cx, Real, V3};
 use crate::math;
 use glam::Vec3;
@@ -28,13 +29,6 @@ fn ratio<R: Real>(num2: R, den: Cx<R>) -> R {
 /// 50 % for an f32 direction 2.5e-4 rad from the normal before this form (`docs/ghs.md`).
 pub fn diffraction_color(wi: Vec3, wo: Vec3, n: f32, k: f32) -> f32 {
     diffraction_color_lanes(wi.into(), wo.into(), n, k)
-}
-
-/// `η² − 1` (`(n − 1)(n + 1) − k²`, exact for `n` near 1) and `2nk`.
-#[inline(always)]
-fn eta2_minus_1<R: Real>(n: R, k: R) -> Cx<R> {
-    let one = R::splat(1.0);
-    Cx::new((n - one) * (n + one) - k * k, R::splat(2.0) * n * k)
 }
 
 /// [`diffraction_color`] for any [`Real`] (the one formula).

@@ -189,6 +189,26 @@ fn reduce_pio4(x: f32) -> (u32, f32) {
     (j & 7, r)
 }
 
+/// `(sin θ, cos θ)` for |θ| ≤ π/2, any [`Real`], about 1 ULP: the polynomials below
+/// directly up to π/4 and on the complement `π/2 − |θ|` beyond (the difference with the
+/// leading part of π/2 is exact there, Sterbenz, and its trailing part is added once), so
+/// `cos θ` keeps its relative accuracy up to the ends of the range.
+#[inline(always)]
+pub fn sin_cos_within_half_pi<R: Real>(theta: R) -> (R, R) {
+    let c = R::splat;
+    let a = theta.abs();
+    let direct = a.le(c(core::f32::consts::FRAC_PI_4));
+    let r = R::select(direct, a, (c(PIO2_HI) - a) + c(PIO2_LO));
+    let (s, co) = (sin_poly(r), cos_poly(r));
+    let sin_a = R::select(direct, s, co);
+    let cos_a = R::select(direct, co, s);
+    (R::select(theta.lt(c(0.0)), -sin_a, sin_a), cos_a)
+}
+
+/// π/2 rounded to `f32`, and the remainder `π/2 − PIO2_HI`.
+const PIO2_HI: f32 = core::f32::consts::FRAC_PI_2;
+const PIO2_LO: f32 = -4.371_139e-8;
+
 /// sin(r) for |r| ≤ π/4.
 #[inline(always)]
 pub(super) fn sin_poly<R: Real>(r: R) -> R {
