@@ -2,11 +2,15 @@
 #![allow(missing_docs)]
 //! Footprint averages/s by method: Velinov Eq. 15, Eq. 16 (π restored) and the accurate
 //! quadrature, over ellipses from A_P/A_C = 0.01 to 100 (the cost side of
-//! `benches/footprint_chart.py`).
+//! `benches/footprint_chart.py`). The accurate quadrature twice: `accurate` is the kernel's
+//! default (each panel's 8 nodes in one `Lanes<8>` on the CPU), `accurate-one-node` the same
+//! formula one node at a time (what SPIR-V runs), so their ratio is the lanes' speed-up.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use scratchwave_benches::Rng;
-use scratchwave_kernel::footprint::{Ellipse, eta_p_accurate, eta_p_eq15, eta_p_eq16};
+use scratchwave_kernel::footprint::{
+    Ellipse, Nodes, eta_p_accurate, eta_p_accurate_by, eta_p_eq15, eta_p_eq16,
+};
 use scratchwave_kernel::scratch::{Profile, Scratch};
 use std::hint::black_box;
 use std::time::Duration;
@@ -64,6 +68,14 @@ fn footprint(c: &mut Criterion) {
             cases
                 .iter()
                 .map(|(s, e)| eta_p_accurate(black_box(s), e, sigma))
+                .sum::<f32>()
+        })
+    });
+    g.bench_function("accurate-one-node", |b| {
+        b.iter(|| {
+            cases
+                .iter()
+                .map(|(s, e)| eta_p_accurate_by(black_box(s), e, sigma, Nodes::OneAtATime))
                 .sum::<f32>()
         })
     });
