@@ -19,6 +19,17 @@ fn artifact_dir() -> PathBuf {
         .to_path_buf()
 }
 
+/// The cargo profile this test was built with, named as `--profile` takes it: the artifact
+/// directory's name (`release`, or a custom profile's), `debug` being the `dev` profile's.
+fn cargo_profile() -> String {
+    let dir = artifact_dir();
+    let name = dir
+        .file_name()
+        .and_then(|n| n.to_str())
+        .expect("profile directory name");
+    if name == "debug" { "dev" } else { name }.to_string()
+}
+
 /// Parses C's `%a` output (`0x1.8p-3`, `-0x0p+0`).
 fn hex_float(s: &str) -> f32 {
     let (neg, t) = s.strip_prefix('-').map_or((false, s), |t| (true, t));
@@ -46,7 +57,15 @@ fn c_example_matches_rust_bitwise() {
     // sources and profile; the outer cargo has released the build directory by now).
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let st = Command::new(&cargo)
-        .args(["build", "--quiet", "--lib", "-p", "scratchwave-capi"])
+        .args([
+            "build",
+            "--quiet",
+            "--lib",
+            "-p",
+            "scratchwave-capi",
+            "--profile",
+        ])
+        .arg(cargo_profile())
         .current_dir(dir)
         .status()
         .expect("run cargo");
