@@ -36,6 +36,7 @@ use scratchwave_embree::{Device, SceneBuilder};
 use scratchwave_host::{Coherence, RayQueries, TriangleBvh};
 use scratchwave_kernel::ray::{Hit, Ray};
 use scratchwave_testkit::fixtures::{camera_rays, random_rays, sphere_with, triangle_soup};
+use scratchwave_testkit::heightfield::quantile;
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -126,25 +127,14 @@ struct Row {
     same: bool,
 }
 
-/// The `q`-quantile of sorted `x` (linear interpolation between ranks).
-fn quantile(x: &[f64], q: f64) -> f64 {
-    let Some(last) = x.len().checked_sub(1) else {
-        return f64::NAN;
-    };
-    let at = q * last as f64;
-    let (i, f) = (at.floor() as usize, at.fract());
-    x[i] + f * (x[(i + 1).min(last)] - x[i])
-}
-
 /// `median [lower quartile, upper quartile]` of the paired Rust ÷ C ratios.
 fn paired_summary(paired: &[f64]) -> String {
-    let mut x = paired.to_vec();
-    x.sort_by(f64::total_cmp);
+    // Linear interpolation between order statistics (testkit's definition).
     format!(
         "{:.3} [{:.3}, {:.3}]",
-        quantile(&x, 0.5),
-        quantile(&x, 0.25),
-        quantile(&x, 0.75)
+        quantile(paired, 0.5),
+        quantile(paired, 0.25),
+        quantile(paired, 0.75)
     )
 }
 

@@ -27,6 +27,7 @@ use scratchwave_kernel::render::shading::{self, SceneModel, ShadeMaterial};
 use scratchwave_kernel::render::surface::SurfacePoint;
 use scratchwave_kernel::scratch::{DepthTerm, Profile, Scratch};
 use scratchwave_kernel::table::{Model, TableParams};
+use scratchwave_render::reference::quantile_sorted;
 use std::io::Write;
 
 const SIGMA: f32 = 8.0;
@@ -230,12 +231,15 @@ fn measure(pattern: Pattern, alpha: f32, seed: u64, set_seed: u64) -> Option<Row
     })
 }
 
+/// The nearest-rank `q`-quantile of `v` (sorted in place; the renderer's
+/// [`quantile_sorted`], the definition of every p99 the reference comparisons print), NaN
+/// when empty.
 fn quantile(v: &mut [f64], q: f64) -> f64 {
     if v.is_empty() {
         return f64::NAN;
     }
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[((v.len() - 1) as f64 * q).round() as usize]
+    v.sort_by(f64::total_cmp);
+    quantile_sorted(v, q)
 }
 
 fn main() {
