@@ -10,17 +10,7 @@
 mod sweep_common;
 
 use scratchwave_kernel::footprint::{Nodes, eta_p_accurate_by, rho_p_accurate_by};
-use sweep_common::{Table, footprint_inputs};
-
-/// Distance of `a` from `b` in units of the f32 spacing at `b` (0 for equal bits, also for
-/// two zeros).
-fn ulps(a: f32, b: f32) -> f64 {
-    if a.to_bits() == b.to_bits() || (a == 0.0 && b == 0.0) {
-        return 0.0;
-    }
-    let spacing = f64::from(f32::from_bits(b.abs().to_bits() + 1)) - f64::from(b.abs());
-    (f64::from(a) - f64::from(b)).abs() / spacing
-}
+use sweep_common::{Table, footprint_inputs, ulps};
 
 #[test]
 fn lanes_and_one_node_at_a_time_agree() {
@@ -41,7 +31,7 @@ fn lanes_and_one_node_at_a_time_agree() {
                 "{name}: {lanes} / {one} at {}",
                 r.text()
             );
-            let d = ulps(lanes, one);
+            let d = ulps(lanes, f64::from(one));
             total += 1;
             if d == 0.0 {
                 same += 1;

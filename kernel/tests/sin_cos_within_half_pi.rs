@@ -3,21 +3,10 @@
 //! switches to the complement) and ±π/2 (where `cos θ` → 0 must keep its relative
 //! accuracy), and a uniform sweep between.
 
-use scratchwave_kernel::math::portable::sin_cos_within_half_pi;
+mod sweep_common;
 
-/// `|got − want|` in units of the f32 spacing at `want`.
-fn ulps(got: f32, want: f64) -> f64 {
-    let w = want as f32;
-    let spacing = f64::from(f32::from_bits(w.abs().to_bits() + 1)) - f64::from(w.abs());
-    if spacing == 0.0 || !spacing.is_finite() {
-        return if f64::from(got) == want {
-            0.0
-        } else {
-            f64::INFINITY
-        };
-    }
-    (f64::from(got) - want).abs() / spacing
-}
+use scratchwave_kernel::math::portable::sin_cos_within_half_pi;
+use sweep_common::ulps;
 
 /// f32 values: 20 000 consecutive ones on each side of each anchor, and a uniform sweep.
 fn inputs() -> Vec<f32> {

@@ -126,6 +126,20 @@ pub fn rel(got: f32, want: f64) -> f64 {
     ((got as f64 - want) / want).abs()
 }
 
+/// `|got − want|` in units of the f32 spacing at `want` rounded to f32 (0 when equal, also
+/// for two zeros of either sign; ∞ where that spacing is not finite and they differ).
+pub fn ulps(got: f32, want: f64) -> f64 {
+    if f64::from(got) == want {
+        return 0.0;
+    }
+    let w = (want as f32).abs();
+    let spacing = f64::from(f32::from_bits(w.to_bits() + 1)) - f64::from(w);
+    if spacing == 0.0 || !spacing.is_finite() {
+        return f64::INFINITY;
+    }
+    (f64::from(got) - want).abs() / spacing
+}
+
 /// One report group's tally.
 #[derive(Default)]
 pub struct Stat {
