@@ -370,9 +370,10 @@ fn gl_node(i: usize) -> (f32, f32) {
     }
 }
 
-/// One node of the θ quadrature (the one formula, per lane): at `θ`, `u = eu + U sin θ`, the chord across the scratch at that `u` is integrated
-/// in closed form and multiplied by the along-scratch factor and by `w cos θ` (the node
-/// weight and the Jacobian's angular part).
+/// One node of the θ quadrature (the one formula, per lane): at `θ`, `u = eu + U sin θ`,
+/// the chord across the scratch at that `u` is integrated in closed form and multiplied by
+/// the along-scratch factor and by `w cos θ` (the node weight and the Jacobian's angular
+/// part).
 #[inline(always)]
 fn node_value<R: Real>(c: &Chords, theta: R, w: R) -> R {
     let k = R::splat;

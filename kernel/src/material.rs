@@ -116,3 +116,44 @@ impl Material {
             && Conductor::from_u32(self.conductor) != Conductor::None
     }
 }
+
+/// [`Material::reflectance`] at fixed directions for several wavelengths: formed once, at
+/// the first wavelength asked for, when the material is not spectral
+/// ([`Material::is_spectral`]), and per wavelength otherwise. Every value is bitwise the
+/// one `reflectance` returns (a non-spectral material does not read the wavelength).
+#[derive(Clone, Copy, Debug)]
+pub struct Reflectance {
+    material: Material,
+    wi: Vec3,
+    wo: Vec3,
+    /// The value for every wavelength, once `formed` (non-spectral materials).
+    shared: f32,
+    formed: bool,
+}
+
+impl Reflectance {
+    /// The reflectance of `material` for unit directions `wi`, `wo`.
+    #[inline]
+    pub fn new(material: &Material, wi: Vec3, wo: Vec3) -> Reflectance {
+        Reflectance {
+            material: *material,
+            wi,
+            wo,
+            shared: 0.0,
+            formed: false,
+        }
+    }
+
+    /// The reflectance at `lambda_nm`.
+    #[inline]
+    pub fn at(&mut self, lambda_nm: f32) -> f32 {
+        if self.material.is_spectral() {
+            return self.material.reflectance(self.wi, self.wo, lambda_nm);
+        }
+        if !self.formed {
+            self.shared = self.material.reflectance(self.wi, self.wo, lambda_nm);
+            self.formed = true;
+        }
+        self.shared
+    }
+}

@@ -10,6 +10,7 @@
 
 use super::{BsdfMaterial, Lookup, ShadingFrame, ShadingPoint, Spectrum, Wavelengths};
 use crate::ghs::g1::G1Table;
+use crate::material::Reflectance;
 use crate::math;
 use crate::render::footprint::velinov_footprint_brdf_spectral;
 use crate::render::shading::SceneModel;
@@ -77,6 +78,7 @@ pub fn eval<S: ScratchSet>(
                 area_density: ghs_base || (model == table::Model::Velinov && m.base_gaussian == 1),
             };
             let terms = scratch_response_spectral(set, &q);
+            let mut reflectance = Reflectance::new(&m.material, wi, wo);
             let mut j = 0;
             while j < MAX_SPECTRAL && j < n {
                 vals[j] = table::model_value(
@@ -85,7 +87,7 @@ pub fn eval<S: ScratchSet>(
                     &terms[j],
                     xi[j],
                     sigma,
-                    m.material.reflectance(wi, wo, wl.nm[j]),
+                    reflectance.at(wl.nm[j]),
                     um_from_nm(wl.nm[j]),
                 );
                 j += 1;

@@ -26,10 +26,14 @@ use super::limits::MAX_VERTICES;
 use super::polygon::SphericalPolygon;
 use super::sphere::{Cone, SphereCap};
 use crate::footprint::{Ellipse, eta_p_accurate};
-use crate::material::Material;
+#[cfg(not(target_arch = "spirv"))]
+use crate::lane::Lanes;
+use crate::lane::Real;
+use crate::material::{Material, Reflectance};
 use crate::math;
 use crate::math::quadrature::{GL4_W, GL4_X, GL8_W, GL8_X};
 use crate::scratch::profile::mask_minus_profile;
+use crate::scratch::profile::mask_minus_profile_lanes;
 use crate::scratch::response::CUTOFF_SIGMAS;
 use crate::scratch::{DepthTerm, EtaMode, NearCursor, Profile, Scratch, ScratchSet, SegmentFrame};
 use bytemuck::{Pod, Zeroable};
@@ -384,26 +388,63 @@ pub fn across_integral(a: &Across, q0: f32, len: f32) -> f32 {
             let mut p = 0;
             while p < panels {
                 let mid = q0 + (p as f32 + 0.5) * h;
-                let mut i = 0;
-                while i < 4 {
-                    let j = i / 2;
-                    let x = if i % 2 == 0 { -GL4_X[j] } else { GL4_X[j] };
-                    let q = mid + 0.5 * h * x;
-                    let mp = mask_minus_profile(
-                        a.profile,
-                        a.width,
-                        a.depth,
-                        a.depth_half_turns_per_um,
-                        q,
-                    );
-                    acc += GL4_W[j] * mp.norm_sqr();
-                    i += 1;
-                }
+                acc = triangle_panel(a, mid, 0.5 * h, acc);
                 p += 1;
             }
             0.5 * h * acc
         }
     }
+}
+
+/// Node `i` (0..4) of the 4-point Gauss–Legendre rule on [−1, 1] and its weight, in the
+/// order `−x₀, x₀, −x₁, x₁`.
+#[inline(always)]
+fn gl4_node(i: usize) -> (f32, f32) {
+    let j = (i / 2) % 2;
+    let x = if i & 1 == 0 { -GL4_X[j] } else { GL4_X[j] };
+    (x, GL4_W[j])
+}
+
+/// `|M − P|²` of the V-groove at `ξ₂ = q` (1/µm): the one formula of a node of
+/// [`across_integral`]'s V-groove rule, for any [`Real`].
+#[inline(always)]
+fn triangle_node<R: Real>(a: &Across, q: R) -> R {
+    mask_minus_profile_lanes(
+        Profile::Triangle,
+        R::splat(a.width),
+        R::splat(a.depth),
+        R::splat(a.depth_half_turns_per_um),
+        q,
+    )
+    .norm_sqr()
+}
+
+/// `acc` plus the weighted node values of one V-groove panel centred on `mid` with
+/// half-width `half`, added in node order ([`gl4_node`]): the 4 nodes in one `Lanes<4>` on
+/// the CPU, one after the other on SPIR-V. The two give the same bits (the node formula
+/// uses the kernel's own polynomials, not the `exp`/`ln` seam where lanes and scalar
+/// differ; `kernel/tests/band_triangle_lanes.rs`).
+#[inline]
+fn triangle_panel(a: &Across, mid: f32, half: f32, mut acc: f32) -> f32 {
+    #[cfg(not(target_arch = "spirv"))]
+    let v: Lanes<4> = triangle_node(
+        a,
+        Lanes(core::array::from_fn(|i| mid + half * gl4_node(i).0)),
+    );
+    let mut i = 0;
+    while i < 4 {
+        let (x, w) = gl4_node(i);
+        #[cfg(not(target_arch = "spirv"))]
+        let value = {
+            let _ = x;
+            v.0[i]
+        };
+        #[cfg(target_arch = "spirv")]
+        let value = triangle_node(a, mid + half * x);
+        acc += w * value;
+        i += 1;
+    }
+    acc
 }
 
 /// `∫ |M − P|² dξ₂` over the lit part of the band at `offset` (direction cosines) from the
@@ -769,11 +810,13 @@ pub fn light_integrals_in<S: ScratchSet>(
             k += 1;
         }
     }
+    // F only where some power arrives (most shading points see no band reach the light),
+    // and once for all wavelengths when it does not depend on them.
+    let mut reflectance = Reflectance::new(material, wc, wo);
     let mut k = 0;
     while k < n && k < MAX_LAMBDAS {
-        if lambda[k] > 0.0 {
-            let f = material.reflectance(wc, wo, lambdas_nm[k]);
-            let r = f * power[k] / (math::PI * sigma * sigma);
+        if lambda[k] > 0.0 && power[k] > 0.0 {
+            let r = reflectance.at(lambdas_nm[k]) * power[k] / (math::PI * sigma * sigma);
             out[k] = if r.is_finite() && r > 0.0 { r } else { 0.0 };
         }
         k += 1;

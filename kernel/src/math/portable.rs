@@ -205,8 +205,9 @@ pub fn sin_cos_within_half_pi<R: Real>(theta: R) -> (R, R) {
     (R::select(theta.lt(c(0.0)), -sin_a, sin_a), cos_a)
 }
 
-/// π/2 rounded to `f32`, and the remainder `π/2 − PIO2_HI`.
+/// π/2 rounded to `f32`.
 const PIO2_HI: f32 = core::f32::consts::FRAC_PI_2;
+/// The remainder `π/2 − PIO2_HI` (to `f32`).
 const PIO2_LO: f32 = -4.371_139e-8;
 
 /// sin(r) for |r| ≤ π/4.

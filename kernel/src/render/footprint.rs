@@ -19,7 +19,7 @@
 use super::camera::RayDifferential;
 use super::surface::SurfacePoint;
 use crate::footprint::{Ellipse, eta_p_accurate, rho_p_accurate};
-use crate::material::Material;
+use crate::material::{Material, Reflectance};
 use crate::math;
 use crate::scratch::profile::mask_minus_profile;
 use crate::scratch::response::CUTOFF_SIGMAS;
@@ -153,11 +153,12 @@ pub fn velinov_footprint_brdf_spectral<S: ScratchSet>(
             }
         }
     }
+    let mut reflectance = Reflectance::new(material, wi, wo);
     let mut j = 0;
     while j < n {
         let lambda = um_from_nm(lambdas_nm[j]);
         if lambda > 0.0 {
-            let f = material.reflectance(wi, wo, lambdas_nm[j]);
+            let f = reflectance.at(lambdas_nm[j]);
             let mut total = sum[j];
             if base {
                 let b = base_response(xi[j], sigma);
