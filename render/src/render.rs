@@ -249,8 +249,10 @@ fn render_tile<Q: RayQueries + ?Sized>(
             .as_ref()
             .and_then(|h| hit_point(&geo, &diffs[idx], footprint_scale, h));
         if let Some(hp) = &point {
+            let m = &prep.materials[hp.material as usize];
+            let lk = Lookup::new(prep.scratch_set(hp.material as usize));
             for light in &prep.lights {
-                let f = first_rays(hp, light, frame.shadow_mode());
+                let f = first_rays(&frame, m, &lk, hp, light);
                 batch.extend_from_slice(&f.rays[..f.count as usize]);
                 first.push(f);
             }

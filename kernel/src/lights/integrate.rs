@@ -570,6 +570,60 @@ fn extent_power(
     sum
 }
 
+/// The standard deviation of the band in direction cosines, `λ/(2√2 πσ)` (λ, σ in µm).
+#[inline]
+fn band_sd(lambda: f32, sigma: f32) -> f32 {
+    lambda / (2.0 * math::SQRT_2 * math::PI * sigma)
+}
+
+/// The distance (µm) from the shading point within which a scratch can contribute to the
+/// light integral: `max(a1, a2) + 6σ` with the footprint `fp`, `6σ` without (`fp.a1 = 0`).
+#[inline]
+fn reach_radius(fp: &Ellipse, sigma: f32) -> f32 {
+    if fp.a1 > 0.0 && fp.a2 > 0.0 {
+        math::max(fp.a1, fp.a2) + CUTOFF_SIGMAS * sigma
+    } else {
+        CUTOFF_SIGMAS * sigma
+    }
+}
+
+/// Whether [`light_integrals_in`] (same `params`, `region`, `wo`, `x`, `fp`, `set`) can be
+/// non-zero at some wavelength up to `lambda_max_nm`: some scratch within its reach has a
+/// band that may meet the light ([`band_may_reach`] at the band of `lambda_max_nm`, the
+/// widest). `false` means the integral is exactly 0 at every wavelength up to that one; a
+/// renderer then needs no shadow ray for the light. The walk and the test are
+/// `light_integrals_in`'s own, without the band integrals.
+pub fn light_may_reach<S: ScratchSet>(
+    params: &LightParams,
+    region: &LightRegion,
+    wo: [f32; 3],
+    x: [f32; 2],
+    lambda_max_nm: f32,
+    fp: &Ellipse,
+    set: &S,
+) -> bool {
+    let wo = Vec3::from_array(wo).normalize_or_zero();
+    let sigma = params.sigma_um;
+    if !(wo.z > 0.0 && sigma > 0.0 && sigma.is_finite()) {
+        return false;
+    }
+    let lambda_max = crate::units::um_from_nm(lambda_max_nm);
+    if !(lambda_max > 0.0 && lambda_max.is_finite()) {
+        return true;
+    }
+    let sd_max = band_sd(lambda_max, sigma);
+    let radius = reach_radius(fp, sigma);
+    let mut cursor = NearCursor::default();
+    while let Some(s) = set.next_near(&mut cursor, Vec2::from_array(x), radius) {
+        if let Some(frame) = s.frame()
+            && band_may_reach(region, &frame, wo, sd_max)
+        {
+            return true;
+        }
+    }
+    false
+}
+
 /// Band offsets (in the band's standard deviations) beyond which a light cannot contribute:
 /// [`EXTENT_SDS`] with a margin for rounding (every band rule stays within 4.5).
 const REJECT_SDS: f32 = 4.6;
@@ -641,8 +695,7 @@ pub fn band_power(
         lambda,
         si,
     };
-    // Standard deviation of the band in direction cosines: λ/(2√2 πσ).
-    let sd = lambda / (2.0 * math::SQRT_2 * math::PI * sigma);
+    let sd = band_sd(lambda, sigma);
     if rule == BandRule::Extent {
         extent_power(region, frame, wo, &across, sd)
     } else {
@@ -760,7 +813,7 @@ pub fn light_integrals_in<S: ScratchSet>(
         lambda_max = math::max(lambda_max, lambda[k]);
         k += 1;
     }
-    let sd_max = lambda_max / (2.0 * math::SQRT_2 * math::PI * sigma);
+    let sd_max = band_sd(lambda_max, sigma);
     let eta = EtaMode::from_u32(params.eta);
     let si = SiMode::from_u32(params.si_mode);
     let rule = BandRule::from_u32(params.bands);
@@ -768,11 +821,7 @@ pub fn light_integrals_in<S: ScratchSet>(
     let footprint = fp.a1 > 0.0 && fp.a2 > 0.0;
     let mut e = *fp;
     e.center = x;
-    let radius = if footprint {
-        math::max(e.a1, e.a2) + CUTOFF_SIGMAS * sigma
-    } else {
-        CUTOFF_SIGMAS * sigma
-    };
+    let radius = reach_radius(fp, sigma);
     let mut power = [0.0f32; MAX_LAMBDAS];
     let mut cursor = NearCursor::default();
     while let Some(s) = set.next_near(&mut cursor, x0, radius) {

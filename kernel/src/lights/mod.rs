@@ -26,7 +26,7 @@ pub mod sphere;
 pub use band::{SiMode, band_antiderivative, band_integral, band_integral_len};
 pub use integrate::{
     BandRule, Light, LightKind, LightParams, LightQuery, LightRegion, MAX_LAMBDAS, light_integral,
-    light_integral_footprint, light_integrals, light_integrals_in,
+    light_integral_footprint, light_integrals, light_integrals_in, light_may_reach,
 };
 pub use limits::{MAX_BREAKPOINTS, MAX_VERTICES};
 pub use method::LightMethod;

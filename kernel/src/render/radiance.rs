@@ -4,9 +4,10 @@
 //! SPIR-V renderer (one invocation per pixel, [`pixel_radiance`]).
 //!
 //! Per hit and light: the first shadow rays ([`first_rays`]: a delta light's one ray, an
-//! area light's probes), then [`shade_light`] with their answers. An area light whose
-//! probes agree is wholly visible or hidden; otherwise every quadrature node gets its own
-//! shadow ray ([`Occlusion`]). Wavelengths are shaded in groups of
+//! area light's probes; none for an area light that cannot add anything there,
+//! [`shading::area_light_is_dark`]), then [`shade_light`] with their answers. An area light
+//! whose probes agree is wholly visible or hidden; otherwise every quadrature node gets its
+//! own shadow ray ([`Occlusion`]). Wavelengths are shaded in groups of
 //! [`MAX_LAMBDAS`], one scratch walk per group.
 
 use super::area::{self, SceneLight};
@@ -252,19 +253,45 @@ pub struct FirstRays {
     pub rays: [Ray; area::MAX_PROBES],
     /// How many.
     pub count: u32,
-    /// The light lies wholly below the hit's horizon (adaptive shadows): nothing to shade.
-    pub below_horizon: bool,
+    /// Nothing to shade for this area light: it lies wholly below the hit's horizon
+    /// (adaptive shadows), or sends nothing towards the viewer through this material here
+    /// whatever its visibility ([`shading::area_light_is_dark`]).
+    pub skip: bool,
 }
 
-/// The shadow rays `light` needs first at `hp`: a delta light's one ray (if above the
-/// horizon); an area light's probes above the horizon (adaptive shadows only).
-pub fn first_rays(hp: &HitPoint, light: &SceneLight, mode: ShadowMode) -> FirstRays {
+/// The shadow rays `light` needs first at `hp` on material `m` (lookup `lk`): a delta
+/// light's one ray (if above the horizon); an area light's probes above the horizon
+/// (adaptive shadows only); none, and [`FirstRays::skip`], for an area light that cannot
+/// add anything there (below the horizon, or [`shading::area_light_is_dark`] at the frame's
+/// longest wavelength).
+pub fn first_rays<S: ScratchSet>(
+    frame: &FrameParams,
+    m: &ShadeMaterial,
+    lk: &Lookup<'_, S>,
+    hp: &HitPoint,
+    light: &SceneLight,
+) -> FirstRays {
+    let mode = frame.shadow_mode();
     let mut out = FirstRays {
         rays: [Ray::new([0.0; 3], [0.0; 3]); area::MAX_PROBES],
         count: 0,
-        below_horizon: false,
+        skip: false,
     };
     let sp = &hp.sp;
+    if !shading::is_delta(light)
+        && shading::area_light_is_dark(
+            m,
+            sp,
+            hp.wo,
+            light,
+            lk,
+            &hp.fp,
+            frame.longest_wavelength_nm(),
+        )
+    {
+        out.skip = true;
+        return out;
+    }
     if shading::is_delta(light) {
         if let Some((dir, dist, _)) = shading::delta_direction(light, sp.position)
             && sp.to_local(dir).z > 0.0
@@ -274,7 +301,7 @@ pub fn first_rays(hp: &HitPoint, light: &SceneLight, mode: ShadowMode) -> FirstR
         }
     } else if mode == ShadowMode::Adaptive {
         if area::below_horizon(light, sp.position, sp.z) {
-            out.below_horizon = true;
+            out.skip = true;
             return out;
         }
         let probes = area::probe_nodes(light, sp.position);
@@ -379,7 +406,7 @@ pub fn shade_light<S: ScratchSet, O: Occlusion>(
         }
         return;
     }
-    if first.below_horizon {
+    if first.skip {
         return;
     }
     // Consensus of the probes: all lit, all blocked, or none (they disagree, or there are
@@ -713,7 +740,7 @@ pub fn pixel_radiance<'a, T: Tracer, L: SceneScratches<'a>>(
         while li < lights.len() {
             let light = lights[li];
             li += 1;
-            let first = first_rays(&hp, &light, frame.shadow_mode());
+            let first = first_rays(frame, &m, &lk, &hp, &light);
             let mut blocked = 0u32;
             let mut r = 0;
             while r < first.count as usize && r < area::MAX_PROBES {

@@ -22,6 +22,7 @@ use crate::footprint::Ellipse;
 use crate::ghs::GhsParams;
 use crate::lights::{
     Cone, Light, LightMethod, LightParams, LightRegion, MAX_LAMBDAS, light_integrals_in,
+    light_may_reach,
 };
 use crate::material::Material;
 use crate::math;
@@ -307,20 +308,11 @@ pub fn velinov_area_light<S: ScratchSet>(
 ) -> [f32; MAX_LAMBDAS] {
     let set = &lk.scratches;
     let kl = local_light(sp, light);
-    let method = LightMethod::from_u32(m.light_method);
-    let params = LightParams {
-        sigma_um: m.table.sigma_um,
-        eta: m.table.eta,
-        depth_term: m.table.depth_term,
-        si_mode: method.si_mode() as u32,
-        bands: method.band_rule() as u32,
-        pad: [0; 3],
-    };
     let Some(region) = LightRegion::new(&kl) else {
         return [0.0; MAX_LAMBDAS];
     };
     let mut l = light_integrals_in(
-        &params,
+        &velinov_light_params(m),
         &region,
         wo.to_array(),
         sp.x_um.to_array(),
@@ -340,6 +332,55 @@ pub fn velinov_area_light<S: ScratchSet>(
         k += 1;
     }
     l
+}
+
+/// The closed form's options for the material `m` ([`ShadeMaterial::light_method`]).
+#[inline]
+fn velinov_light_params(m: &ShadeMaterial) -> LightParams {
+    let method = LightMethod::from_u32(m.light_method);
+    LightParams {
+        sigma_um: m.table.sigma_um,
+        eta: m.table.eta,
+        depth_term: m.table.depth_term,
+        si_mode: method.si_mode() as u32,
+        bands: method.band_rule() as u32,
+        pad: [0; 3],
+    }
+}
+
+/// Whether `light` sends nothing towards `wo` at this hit whatever its visibility, so that
+/// a renderer needs no shadow ray for it: `m` is `velinov` without a GHS base (the closed
+/// form times the visible fraction, no per-node part), the light is a sphere or triangle,
+/// no scratch within reach has a band that may meet it up to `lambda_max_nm`
+/// ([`light_may_reach`]), and the mirror direction of `wo` misses it (or there is no mirror
+/// base). Then [`velinov_area_light`] is exactly 0 at every wavelength up to
+/// `lambda_max_nm`. `false` whenever that is not certain (every other model, `auto`).
+#[allow(clippy::too_many_arguments)]
+pub fn area_light_is_dark<S: ScratchSet>(
+    m: &ShadeMaterial,
+    sp: &SurfacePoint,
+    wo: Vec3,
+    light: &SceneLight,
+    lk: &Lookup<'_, S>,
+    fp: &Ellipse,
+    lambda_max_nm: f32,
+) -> bool {
+    if needs_area_nodes(m) || is_delta(light) {
+        return false;
+    }
+    let Some(region) = LightRegion::new(&local_light(sp, light)) else {
+        return true;
+    };
+    !mirror_in_region(m, wo, &region)
+        && !light_may_reach(
+            &velinov_light_params(m),
+            &region,
+            wo.to_array(),
+            sp.x_um.to_array(),
+            lambda_max_nm,
+            fp,
+            &lk.scratches,
+        )
 }
 
 /// `F(wm, wo)` at `lambda_nm`, `wm` the mirror direction of `wo`: the reflectance of a
@@ -364,9 +405,7 @@ fn mirror_weight_in_region<S: ScratchSet>(
     fp: &Ellipse,
     set: &S,
 ) -> f32 {
-    let mirror_base = BaseKind::from_u32(m.base) == BaseKind::Smooth || m.table.base_gaussian == 1;
-    let wm = Vec3::new(-wo.x, -wo.y, wo.z);
-    if !(mirror_base && wm.z > 0.0 && region.contains(wm)) {
+    if !mirror_in_region(m, wo, region) {
         return 0.0;
     }
     if fp.a1 > 0.0 && fp.a2 > 0.0 {
@@ -374,6 +413,15 @@ fn mirror_weight_in_region<S: ScratchSet>(
     } else {
         base_weight(m, sp.x_um, set)
     }
+}
+
+/// Whether `m` has a mirror base (smooth, or Velinov's Gaussian base) and the mirror
+/// direction of `wo` lies in `region`.
+#[inline]
+fn mirror_in_region(m: &ShadeMaterial, wo: Vec3, region: &LightRegion) -> bool {
+    let mirror_base = BaseKind::from_u32(m.base) == BaseKind::Smooth || m.table.base_gaussian == 1;
+    let wm = Vec3::new(-wo.x, -wo.y, wo.z);
+    mirror_base && wm.z > 0.0 && region.contains(wm)
 }
 
 /// The weight of the mirror part of a smooth base under a sphere or triangle light for the
