@@ -4,6 +4,9 @@
 //! away or by an 8-pointed star polygon light (ear-clipped into triangles, as Velinov's star
 //! light), at zoom 0.5×/1×/2× (field of view), antialiasing off (`footprint: none`) and on
 //! (`footprint: ellipse`, Velinov's camera-footprint integration), on 1 and 2 threads.
+//! Each thread count runs in a child process of this program on rayon's global pool
+//! (`RAYON_NUM_THREADS` set to it), as `scratchwave render` runs; the 2-thread child also
+//! times the 2× sphere grid frame in a separately built pool, which is slower here.
 //!
 //! Shadow rays are adaptive (`render.shadows: "adaptive"`, the default): 4 probe rays per
 //! sphere light and 3 per star triangle, the other quadrature nodes only in penumbrae.
@@ -100,20 +103,88 @@ fn star(c: [f64; 3], outer: f64) -> Value {
     json!({"type": "polygon", "vertices": vertices, "radiance": 40.0})
 }
 
+/// The environment variable that makes this program a child that measures every cell on
+/// rayon's global pool (sized by `RAYON_NUM_THREADS`, which the parent sets to the same
+/// count) and prints one `cell` line per cell.
+const CHILD: &str = "SCRATCHWAVE_TABLE2_THREADS";
+
+/// The configurations of Velinov's Table 2: AA off with the scratch grid (our analogue of
+/// his per-triangle arrays), AA off with the BVH alone, AA on (footprint radii exceed the
+/// grid's and go to the BVH). Name, `render.footprint`, `render.scratch_lookup`.
+const CONFIGS: [(&str, &str, &str); 3] = [
+    ("off, grid", "none", "grid"),
+    ("off, BVH", "none", "bvh"),
+    ("on, BVH", "ellipse", "grid"),
+];
+
+const ZOOMS: [f64; 3] = [0.5, 1.0, 2.0];
+
+const THREADS: [usize; 2] = [1, 2];
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let repeats: usize = std::env::args().nth(1).map_or(Ok(1), |s| s.parse())?;
     let only = std::env::args().nth(2);
-    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/velinov_table2.json");
-    let base: Value = serde_json::from_str(&std::fs::read_to_string(&file)?)?;
-    let fov0 = base["camera"]["fov_y_deg"].as_f64().unwrap_or(22.0);
-    let sphere_light = base["lights"][0].clone();
-    let c = sphere_light["center"]
-        .as_array()
-        .map(|a| [0, 1, 2].map(|i| a[i].as_f64().unwrap_or(0.0)))
-        .unwrap_or([600.0, -500.0, 600.0]);
-    let lights = [("sphere", sphere_light), ("star", star(c, 40.0))];
-    // Velinov's Table 2 (GTX 970M, ms): AA off with a BVH and with per-triangle arrays
-    // (our analogue: the scratch grid), AA on with a BVH; zoom 0.5×, 1×, 2×.
+    match std::env::var(CHILD) {
+        Ok(threads) => measure(repeats.max(1), only.as_deref(), threads.parse()?),
+        Err(_) => table(),
+    }
+}
+
+/// One row of the table: ms/frame and ray-query share (%) per zoom.
+struct Row {
+    light: String,
+    config: String,
+    threads: usize,
+    ms: Vec<String>,
+    share: Vec<String>,
+}
+
+/// Runs one child per thread count, on the global pool as `scratchwave render` runs, and
+/// prints the table from their `cell` lines.
+fn table() -> Result<(), Box<dyn std::error::Error>> {
+    let mut rows: Vec<Row> = Vec::new();
+    let mut notes = Vec::new();
+    for threads in THREADS {
+        let out = std::process::Command::new(std::env::current_exe()?)
+            .args(std::env::args().skip(1))
+            .env(CHILD, threads.to_string())
+            .env("RAYON_NUM_THREADS", threads.to_string())
+            .stderr(std::process::Stdio::inherit())
+            .output()?;
+        if !out.status.success() {
+            return Err(format!("the {threads}-thread run failed ({})", out.status).into());
+        }
+        for line in String::from_utf8(out.stdout)?.lines() {
+            // cell <light>|<config>|<zoom index>|<ms>|<share %>
+            if let Some(rest) = line.strip_prefix("cell ") {
+                let f: Vec<&str> = rest.split('|').collect();
+                if f.len() != 5 {
+                    return Err(format!("unexpected child line: {line}").into());
+                }
+                let at = match rows
+                    .iter()
+                    .position(|r| r.light == f[0] && r.config == f[1] && r.threads == threads)
+                {
+                    Some(at) => at,
+                    None => {
+                        rows.push(Row {
+                            light: f[0].to_string(),
+                            config: f[1].to_string(),
+                            threads,
+                            ms: Vec::new(),
+                            share: Vec::new(),
+                        });
+                        rows.len() - 1
+                    }
+                };
+                rows[at].ms.push(f[3].to_string());
+                rows[at].share.push(f[4].to_string());
+            } else {
+                notes.push(line.to_string());
+            }
+        }
+    }
+    // Velinov's Table 2 (GTX 970M, ms), zoom 0.5×, 1×, 2×.
     let paper = |light: &str, config: &str| match (light, config) {
         ("sphere", "off, grid") => "3.9 / 4.7 / 8.8",
         ("sphere", "off, BVH") => "4.5 / 6.3 / 12.8",
@@ -126,20 +197,62 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "| light | AA, lookup | threads | 0.5× | 1× | 2× | ray queries | GTX 970M (Velinov) |"
     );
     println!("|---|---|---|---|---|---|---|---|");
-    let configs = [
-        ("off, grid", "none", "grid"),
-        ("off, BVH", "none", "bvh"),
-        ("on, BVH", "ellipse", "grid"),
-    ];
+    for light in ["sphere", "star"] {
+        for (config, _, _) in CONFIGS {
+            for threads in THREADS {
+                let Some(r) = rows
+                    .iter()
+                    .find(|r| r.light == light && r.config == config && r.threads == threads)
+                else {
+                    continue;
+                };
+                println!(
+                    "| {light} | {config} | {threads} | {} | {} % | {} |",
+                    r.ms.join(" | "),
+                    r.share.join(" / "),
+                    paper(light, config)
+                );
+            }
+        }
+    }
+    println!();
+    for n in notes {
+        println!("{n}");
+    }
+    Ok(())
+}
+
+/// Measures every cell on the global pool of `threads` threads; prints `cell` lines, then
+/// the segment count and, on two threads, the 2× sphere grid frame in a separately built
+/// pool of the same size.
+fn measure(
+    repeats: usize,
+    only: Option<&str>,
+    threads: usize,
+) -> Result<(), Box<dyn std::error::Error>> {
+    if rayon::current_num_threads() != threads {
+        return Err(format!(
+            "the global pool has {} threads, not {threads}",
+            rayon::current_num_threads()
+        )
+        .into());
+    }
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/velinov_table2.json");
+    let base: Value = serde_json::from_str(&std::fs::read_to_string(&file)?)?;
+    let fov0 = base["camera"]["fov_y_deg"].as_f64().unwrap_or(22.0);
+    let sphere_light = base["lights"][0].clone();
+    let c = sphere_light["center"]
+        .as_array()
+        .map(|a| [0, 1, 2].map(|i| a[i].as_f64().unwrap_or(0.0)))
+        .unwrap_or([600.0, -500.0, 600.0]);
+    let lights = [("sphere", sphere_light), ("star", star(c, 40.0))];
     let mut segments = 0;
     for (light_name, light) in &lights {
-        if only.as_deref().is_some_and(|o| o != *light_name) {
+        if only.is_some_and(|o| o != *light_name) {
             continue;
         }
-        for (config, footprint, lookup) in configs {
-            // Per thread count: ms per zoom, ray-query share per zoom.
-            let mut cells = [(Vec::new(), Vec::new()), (Vec::new(), Vec::new())];
-            for zoom in [0.5f64, 1.0, 2.0] {
+        for (config, footprint, lookup) in CONFIGS {
+            for (zi, zoom) in ZOOMS.into_iter().enumerate() {
                 let mut v = base.clone();
                 let half = (fov0.to_radians() / 2.0).tan() / zoom;
                 v["camera"]["fov_y_deg"] = json!((2.0 * half.atan()).to_degrees());
@@ -158,46 +271,50 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 let (vs, is) = prep.indexed();
                 builder.add_triangle_mesh(&vs, &is)?;
                 let embree = builder.commit()?;
-                for (ti, threads) in [1usize, 2].into_iter().enumerate() {
-                    let pool = rayon::ThreadPoolBuilder::new()
-                        .num_threads(threads)
-                        .build()?;
+                let frame = |run: &dyn Fn(&Timed<'_, _>) -> f64| {
                     let mut runs = Vec::new();
-                    for _ in 0..repeats.max(1) {
+                    for _ in 0..repeats {
                         let timed = Timed {
                             inner: &embree,
                             nanos: AtomicU64::new(0),
                         };
-                        let (_, stats) =
-                            pool.install(|| render::render(&scene, &prep, &timed, &|_, _| {}));
+                        let seconds = run(&timed);
                         let ray_s = timed.nanos.load(Ordering::Relaxed) as f64 * 1e-9;
-                        runs.push((stats, ray_s));
+                        runs.push((seconds, ray_s));
                     }
-                    runs.sort_by(|a, b| a.0.seconds.total_cmp(&b.0.seconds));
-                    let (stats, ray_s) = runs[runs.len() / 2];
-                    // Ray time is summed over threads; the frame time is wall time.
-                    cells[ti].0.push(format!("{:.0}", stats.seconds * 1e3));
-                    cells[ti].1.push(format!(
-                        "{:.0}",
-                        100.0 * ray_s / (stats.seconds * threads as f64)
-                    ));
-                }
-            }
-            for (ti, threads) in [1usize, 2].into_iter().enumerate() {
-                let (ms, share) = &cells[ti];
+                    runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    runs[runs.len() / 2]
+                };
+                let (seconds, ray_s) =
+                    frame(&|q| render::render(&scene, &prep, q, &|_, _| {}).1.seconds);
+                // Ray time is summed over threads; the frame time is wall time.
                 println!(
-                    "| {light_name} | {config} | {threads} | {} | {} | {} | {} % | {} |",
-                    ms[0],
-                    ms[1],
-                    ms[2],
-                    share.join(" / "),
-                    paper(light_name, config)
+                    "cell {light_name}|{config}|{zi}|{:.0}|{:.0}",
+                    seconds * 1e3,
+                    100.0 * ray_s / (seconds * threads as f64)
                 );
+                if threads == 2 && *light_name == "sphere" && config == "off, grid" && zoom == 2.0 {
+                    let pool = rayon::ThreadPoolBuilder::new()
+                        .num_threads(threads)
+                        .build()?;
+                    let (own, _) = frame(&|q| {
+                        pool.install(|| render::render(&scene, &prep, q, &|_, _| {}))
+                            .1
+                            .seconds
+                    });
+                    println!(
+                        "The sphere, off, grid frame at 2× takes {:.0} ms on the global pool of 2 threads and {:.0} ms in a separately built 2-thread pool entered with `ThreadPool::install`.",
+                        seconds * 1e3,
+                        own * 1e3
+                    );
+                }
             }
         }
     }
-    println!(
-        "\n{segments} segments; ms per frame (tile loop, median of {repeats}); ray queries: share of the tile loop's thread time in Embree calls at 0.5× / 1× / 2×."
-    );
+    if threads == 2 {
+        println!(
+            "{segments} segments; ms per frame (tile loop, median of {repeats}) on rayon's global pool (RAYON_NUM_THREADS = threads, as `scratchwave render` runs); ray queries: share of the tile loop's thread time in Embree calls at 0.5× / 1× / 2×."
+        );
+    }
     Ok(())
 }
