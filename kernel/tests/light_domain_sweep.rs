@@ -33,35 +33,17 @@ mod sweep_common;
 use scratchwave_kernel::lights::light_integral;
 use scratchwave_kernel::scratch::ScratchSlice;
 use std::collections::BTreeMap;
-use sweep_common::{K, K_LIGHT, Row, Stat, Table, check_size, light_query, rel, report};
+use sweep_common::{
+    K, K_LIGHT, Row, Stat, Table, check_size, light_group, light_query, rel, report,
+};
 
 /// The committed subset's size (the test refuses fewer).
 const MIN_QUERIES: usize = 1500;
-
-/// Angular-radius bands (upper ends, rad) the report groups by.
-const SIZES: [(f64, &str); 4] = [
-    (1.0e-3, "α < 1e-3"),
-    (0.1, "α 1e-3 – 0.1"),
-    (3.0, "α ≥ 0.1"),
-    (f64::INFINITY, "around the point"),
-];
-
-/// A light whose nearest point is within this of the horizon (rad) counts as near it.
-const NEAR_HORIZON: f64 = 0.01;
 
 /// The kernel's value of one row.
 fn kernel_value(r: &Row) -> f32 {
     let (params, q, s) = light_query(r);
     light_integral(&params, &q, &ScratchSlice { scratches: &s })
-}
-
-/// `(kind index, kind name)` of a row.
-fn kind(r: &Row) -> (usize, &'static str) {
-    match (r.u("kind"), r.u("cone")) {
-        (0, 0) => (0, "sphere (asin)"),
-        (0, _) => (1, "sphere (atan)"),
-        _ => (2, "polygon"),
-    }
 }
 
 #[test]
@@ -73,22 +55,7 @@ fn light_integral_is_within_its_bound_over_the_domain() {
     let mut strict: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
     let mut stats: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
     for r in table.rows() {
-        let (alpha, elev) = (r.d("alpha"), r.d("elev"));
-        let (ki, kn) = kind(&r);
-        let near = alpha < 3.0 && elev - alpha < NEAR_HORIZON;
-        let si = if near {
-            SIZES.len()
-        } else {
-            SIZES.iter().position(|(hi, _)| alpha < *hi).unwrap()
-        };
-        let name = *names.entry((ki, si)).or_insert_with(|| {
-            let band = if near {
-                "near the horizon"
-            } else {
-                SIZES[si].1
-            };
-            Box::leak(format!("{kn}, {band}").into_boxed_str())
-        });
+        let ((ki, si), name) = light_group(&r, &mut names);
         let got = kernel_value(&r);
         let (want, kappa, kappa_s) = (r.d("ref"), r.d("kappa"), r.d("kappa_s"));
         let err = rel(got, want);

@@ -380,3 +380,48 @@ pub fn light_query(r: &Row) -> (LightParams, LightQuery, Vec<Scratch>) {
     };
     (params, q, scratches_of(r))
 }
+
+/// Angular-radius bands (upper ends, rad) the light sweeps' reports group by.
+const LIGHT_SIZES: [(f64, &str); 4] = [
+    (1.0e-3, "α < 1e-3"),
+    (0.1, "α 1e-3 – 0.1"),
+    (3.0, "α ≥ 0.1"),
+    (f64::INFINITY, "around the point"),
+];
+
+/// A light whose nearest point is within this of the horizon (rad) counts as near it.
+const NEAR_HORIZON: f64 = 0.01;
+
+/// A light-sweep row's report group `((kind, size), name)`: the light's kind (sphere with
+/// the `asin` or `atan` cone, polygon) and its angular radius, and apart from those the
+/// lights that reach within [`NEAR_HORIZON`] of the horizon (names end in "near the
+/// horizon"). `names` keeps one `'static` name per group.
+pub fn light_group(
+    r: &Row,
+    names: &mut BTreeMap<(usize, usize), &'static str>,
+) -> ((usize, usize), &'static str) {
+    let (alpha, elev) = (r.d("alpha"), r.d("elev"));
+    let (ki, kn) = match (r.u("kind"), r.u("cone")) {
+        (0, 0) => (0, "sphere (asin)"),
+        (0, _) => (1, "sphere (atan)"),
+        _ => (2, "polygon"),
+    };
+    let near = alpha < 3.0 && elev - alpha < NEAR_HORIZON;
+    let si = if near {
+        LIGHT_SIZES.len()
+    } else {
+        LIGHT_SIZES
+            .iter()
+            .position(|(hi, _)| alpha < *hi)
+            .unwrap_or(LIGHT_SIZES.len() - 1)
+    };
+    let name = *names.entry((ki, si)).or_insert_with(|| {
+        let band = if near {
+            "near the horizon"
+        } else {
+            LIGHT_SIZES[si].1
+        };
+        Box::leak(format!("{kn}, {band}").into_boxed_str())
+    });
+    ((ki, si), name)
+}

@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""Domain sweep of the area-light integral with the Gaussian across the band (issue #20).
+
+`reference/light_sweep.py` checks Velinov's single band (Eq. 27, `bands = 1`): the band
+xi_1 = 0 alone. The renderer's default is the extent rule (`bands = 20`,
+`kernel/src/lights/integrate.rs::extent_power`), which weights the parallel bands
+(wi + wo)_xy . t = o by the normalised Gaussian of the infinite scratch across xi_1 = o/lambda,
+e^(-4 pi^2 sigma^2 xi_1^2), i.e. o ~ N(0, sd^2) with sd = lambda/(2 sqrt(2) pi sigma):
+
+  I = 1/(pi sigma^2) sum_k P_k D2_k int phi(x) L_k(x sd) dx,
+
+phi the standard normal density, L_k(o) = sum_lit [A(q1) - A(q0)] along the band at offset
+o (the band circle w(phi) = c t3 + rho (sin phi b3 + cos phi z) with c = o - wo_xy.t,
+rho = sqrt(1 - c^2)), P_k, D2_k and A as in `light_sweep.py` (whose exact geometry, lit
+arcs, antiderivative, spatial and depth factors, domain and CSV columns this script reuses).
+
+The integral over x is mpmath's tanh-sinh quadrature over the whole line cut where L_k has
+kinks, found here by their own equations (nothing from the kernel's kink code):
+* the band tangent to a boundary plane m.w = h (an edge's great circle, h = 0, or the cone,
+  h = cos alpha): (h - c m_t)^2 = (m_b^2 + m_z^2)(1 - c^2), a quadratic in c;
+* a band end on the horizon (phi = +-pi/2, w = c t3 +- rho b3) on a boundary plane:
+  (h - c m_t)^2 = m_b^2 (1 - c^2);
+* a polygon vertex on the band: c = t3 . v;
+* c = +-1, where the band shrinks to a point.
+Each piece is halved until mpmath's error estimate is below 1e-12 of the whole; a
+query whose summed estimate exceeds 1e-10 of its value is redrawn (counted on stderr). 30
+digits. Beyond |x| = 8 nothing: the Gaussian holds 1.2e-15 of its mass there (the kernel
+stops at 4.5, 6.8e-6), so a light that the bands reach only that far out has the exact
+value 0 here.
+
+No conditioning is computed: one query's kappa would need ~50 further quadratures. The
+kernel's error here is dominated by the extent rule's own quadrature and its cut at
+4.5 standard deviations, which is what this sweep measures
+(`kernel/tests/light_extent_sweep.rs`, `docs/stability.md` *Area lights*).
+
+Usage: python3 reference/light_extent_sweep.py [--count N] [--seed-offset K] [--out DIR]
+Writes DIR/light_extent.csv (default reference/golden/sweep/): `light_sweep.py`'s columns
+without kappa and kappa_s, plus `single`, the same query's exact single-band value, and
+`tail`, the share of the exact value that comes from bands beyond 4.5 standard deviations
+(the kernel's window, `EXTENT_SDS`).
+"""
+import sys
+import time
+
+import mpmath as mp
+import numpy as np
+
+import light_sweep as ls
+from sweep_io import parse_args, progress, write_csv
+
+mp.mp.dps = 30
+
+# Beyond this many standard deviations the Gaussian holds 1.2e-15 of its mass.
+X_MAX = 8
+# The kernel's window (`EXTENT_SDS`): the part of the value from beyond it is reported.
+X_KERNEL = 4.5
+
+
+class OffsetBand(ls.Band):
+    """The band at offset `o` (direction cosines) from xi_1 = 0; `None`-like (rho = 0)
+    where |c| >= 1."""
+
+    def __init__(self, s, wo, o):
+        super().__init__(s, wo)
+        self.c = o - (wo[0] * self.t3[0] + wo[1] * self.t3[1])
+        self.rho = mp.sqrt(1 - self.c * self.c) if abs(self.c) < 1 else mp.mpf(0)
+
+
+def chord(s, wo, reg, lam_um, o):
+    """L(o) = sum_lit A(q1) - A(q0) along the band at offset o, at twice the working
+    precision: the quadrature's nodes crowd within ~10^-dps of a kink, where a lit chord
+    is that short and A(q1) - A(q0) cancels that many digits."""
+    with mp.workdps(2 * mp.mp.dps):
+        band = OffsetBand(s, wo, o)
+        if band.rho == 0:
+            return mp.mpf(0)
+        w = mp.mpf(s["w"])
+        total = mp.mpf(0)
+        for a, b in band.lit(reg):
+            q0 = (band.rho * mp.sin(a) + band.wo_b) / lam_um
+            q1 = (band.rho * mp.sin(b) + band.wo_b) / lam_um
+            total += ls.antiderivative(w, q1) - ls.antiderivative(w, q0)
+    return +total
+
+
+def quadratic_roots(a, b, c):
+    """Real roots of a c^2 + b c + c0 = 0 (here: a x^2 + b x + c)."""
+    if a == 0:
+        return [] if b == 0 else [-c / b]
+    disc = b * b - 4 * a * c
+    if disc < 0:
+        return []
+    r = mp.sqrt(disc)
+    return [(-b + r) / (2 * a), (-b - r) / (2 * a)]
+
+
+def kinks_c(s, reg):
+    """Values of c where L has a kink or a square-root end (see the module doc)."""
+    band = ls.Band(s, [mp.mpf(0), mp.mpf(0), mp.mpf(1)])
+    t3, b3 = band.t3, band.b3
+    out = [mp.mpf(-1), mp.mpf(1)]
+    for m, h in ls.planes(reg):
+        mt, mb, mz = ls.dot(m, t3), ls.dot(m, b3), m[2]
+        # tangency: (h - c mt)^2 = (mb^2 + mz^2)(1 - c^2)
+        r2 = mb * mb + mz * mz
+        out += quadratic_roots(mt * mt + r2, -2 * h * mt, h * h - r2)
+        # a horizon end on the plane: (h - c mt)^2 = mb^2 (1 - c^2)
+        out += quadratic_roots(mt * mt + mb * mb, -2 * h * mt, h * h - mb * mb)
+    if reg[0] == "poly":
+        # vertices: the corners of the spherical polygon, where consecutive planes meet
+        normals = reg[1]
+        for k in range(len(normals)):
+            v = ls.cross(normals[k - 1], normals[k])
+            n = mp.sqrt(ls.dot(v, v))
+            if n > 0:
+                for sign in (1, -1):
+                    out.append(sign * ls.dot(v, t3) / n)
+    return [c for c in out if -1 <= c <= 1]
+
+
+def gaussian_integral(s, wo, reg, lam_um, sd):
+    """int phi(x) L(x sd) dx over |x| <= X_MAX, the sum of the pieces' error estimates, and
+    the part of the integral from |x| > X_KERNEL.
+    A piece is halved until its estimate is below 1e-12 of the sum of |pieces| between the
+    kinks (or it is narrower than 1e-6)."""
+    t = ls.unit([s["tx"], s["ty"]])
+    wo_t = wo[0] * t[0] + wo[1] * t[1]
+    ends = {mp.mpf(-X_MAX), mp.mpf(X_MAX), -mp.mpf(X_KERNEL), mp.mpf(X_KERNEL)}
+    cuts = sorted({(c + wo_t) / sd for c in kinks_c(s, reg)} | ends)
+    cuts = [x for x in cuts if -X_MAX <= x <= X_MAX]
+
+    def f(x):
+        return mp.npdf(x) * chord(s, wo, reg, lam_um, x * sd)
+
+    first = [(a, b, *mp.quad(f, [a, b], error=True)) for a, b in zip(cuts, cuts[1:]) if b > a]
+    scale = sum(abs(v) for _, _, v, _ in first)
+    tol = mp.mpf(10) ** -12 * scale
+    total, err, tail = mp.mpf(0), mp.mpf(0), mp.mpf(0)
+    stack = first
+    while stack:
+        a, b, v, e = stack.pop()
+        if e > tol and b - a > mp.mpf(10) ** -6:
+            mid = (a + b) / 2
+            stack += [(a, mid, *mp.quad(f, [a, mid], error=True)), (mid, b, *mp.quad(f, [mid, b], error=True))]
+            continue
+        total += v
+        err += e
+        if abs(a + b) / 2 > X_KERNEL:
+            tail += v
+    return total, err, tail
+
+
+def value(q):
+    """The exact Gaussian-weighted value of query `q`, its single-band value, the
+    quadrature's estimated relative error, and the share of the value from beyond the
+    kernel's window."""
+    parts = ls.Parts(q)
+    single = parts.total()
+    if parts.reg is None:
+        return mp.mpf(0), single, 0.0, 0.0
+    sig = mp.mpf(q["sigma"])
+    sd = parts.lam / (2 * mp.sqrt(2) * mp.pi * sig)
+    total, err, tail = mp.mpf(0), mp.mpf(0), mp.mpf(0)
+    for k, s in enumerate(q["scratches"]):
+        weight = parts.p[k] * parts.d2[k] / (mp.pi * sig * sig)
+        if weight == 0:
+            continue
+        g, e, t = gaussian_integral(s, parts.wo, parts.reg[0], parts.lam, sd)
+        total += weight * g
+        err += abs(weight) * e
+        tail += weight * t
+    rel = float(err / abs(total)) if total != 0 else 0.0
+    share = float(tail / total) if total != 0 else 0.0
+    return total, single, rel, share
+
+
+def main():
+    args = parse_args(400)
+    rng = np.random.default_rng(20_020 + 7919 + args.seed_offset)
+    rows, t0 = [], time.time()
+    while len(rows) < args.count:
+        q = ls.draw(rng)
+        ref, single, quad_err, tail = value(q)
+        if quad_err > 1e-10:
+            print(f"quadrature error estimate {quad_err:.1e}: redrawn", file=sys.stderr)
+            continue
+        lit = 0
+        reg = ls.region(q)
+        if reg is not None:
+            wo = ls.unit(q["wo"])
+            lit = sum(len(ls.Band(s, wo).lit(reg[0])) for s in q["scratches"])
+        r = ls.row(q, ref, 0.0, lit, 0.0)[:-2]
+        rows.append(r + [mp.nstr(single, 17, min_fixed=1, max_fixed=0), "%.4g" % tail])
+        progress(len(rows), args.count, 20)
+    print(f"{len(rows)} queries, {time.time() - t0:.0f} s", file=sys.stderr)
+    write_csv(args.out, "light_extent", ls.header()[:-2] + ["single", "tail"], rows)
+
+
+if __name__ == "__main__":
+    main()
