@@ -74,17 +74,12 @@ def chord(s, wo, reg, lam_um, o):
         band = OffsetBand(s, wo, o)
         if band.rho == 0:
             return mp.mpf(0)
-        w = mp.mpf(s["w"])
-        total = mp.mpf(0)
-        for a, b in band.lit(reg):
-            q0 = (band.rho * mp.sin(a) + band.wo_b) / lam_um
-            q1 = (band.rho * mp.sin(b) + band.wo_b) / lam_um
-            total += ls.antiderivative(w, q1) - ls.antiderivative(w, q0)
+        total = ls.lit_sum(band, reg, mp.mpf(s["w"]), lam_um)
     return +total
 
 
 def quadratic_roots(a, b, c):
-    """Real roots of a c^2 + b c + c0 = 0 (here: a x^2 + b x + c)."""
+    """Real roots of a x^2 + b x + c = 0."""
     if a == 0:
         return [] if b == 0 else [-c / b]
     disc = b * b - 4 * a * c

@@ -182,18 +182,21 @@ def antiderivative(w, q):
     return w * (mp.si(2 * x) - s2) / mp.pi
 
 
-def band_sum(s, wo, reg, lam_um):
-    """sum_lit A(q1) - A(q0) for scratch s."""
-    if reg is None:
-        return mp.mpf(0)
-    band = Band(s, wo)
-    w = mp.mpf(s["w"])
+def lit_sum(band, shape, w, lam_um):
+    """sum_lit A(q1) - A(q0) along `band` inside the light `shape` (groove width w)."""
     total = mp.mpf(0)
-    for a, b in band.lit(reg[0]):
+    for a, b in band.lit(shape):
         q0 = (band.rho * mp.sin(a) + band.wo_b) / lam_um
         q1 = (band.rho * mp.sin(b) + band.wo_b) / lam_um
         total += antiderivative(w, q1) - antiderivative(w, q0)
     return total
+
+
+def band_sum(s, wo, reg, lam_um):
+    """sum_lit A(q1) - A(q0) for scratch s."""
+    if reg is None:
+        return mp.mpf(0)
+    return lit_sum(Band(s, wo), reg[0], mp.mpf(s["w"]), lam_um)
 
 
 def along(q, s):

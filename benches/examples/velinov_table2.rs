@@ -26,6 +26,7 @@ use scratchwave_host::{Coherence, RayQueries};
 use scratchwave_kernel::ray::{Hit, Ray};
 use scratchwave_render::{prepare, render, scene_file};
 use serde_json::{Value, json};
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -130,11 +131,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
 }
 
-/// One row of the table: ms/frame and ray-query share (%) per zoom.
+/// One row of the table: ms/frame and ray-query share (%) per zoom, in zoom order.
+#[derive(Default)]
 struct Row {
-    light: String,
-    config: String,
-    threads: usize,
     ms: Vec<String>,
     share: Vec<String>,
 }
@@ -142,7 +141,8 @@ struct Row {
 /// Runs one child per thread count, on the global pool as `scratchwave render` runs, and
 /// prints the table from their `cell` lines.
 fn table() -> Result<(), Box<dyn std::error::Error>> {
-    let mut rows: Vec<Row> = Vec::new();
+    // (light, configuration, threads) → row.
+    let mut rows: BTreeMap<(String, String, usize), Row> = BTreeMap::new();
     let mut notes = Vec::new();
     for threads in THREADS {
         let out = std::process::Command::new(std::env::current_exe()?)
@@ -155,30 +155,17 @@ fn table() -> Result<(), Box<dyn std::error::Error>> {
             return Err(format!("the {threads}-thread run failed ({})", out.status).into());
         }
         for line in String::from_utf8(out.stdout)?.lines() {
-            // cell <light>|<config>|<zoom index>|<ms>|<share %>
+            // cell <light>|<config>|<ms>|<share %>, zooms in order
             if let Some(rest) = line.strip_prefix("cell ") {
                 let f: Vec<&str> = rest.split('|').collect();
-                if f.len() != 5 {
+                if f.len() != 4 {
                     return Err(format!("unexpected child line: {line}").into());
                 }
-                let at = match rows
-                    .iter()
-                    .position(|r| r.light == f[0] && r.config == f[1] && r.threads == threads)
-                {
-                    Some(at) => at,
-                    None => {
-                        rows.push(Row {
-                            light: f[0].to_string(),
-                            config: f[1].to_string(),
-                            threads,
-                            ms: Vec::new(),
-                            share: Vec::new(),
-                        });
-                        rows.len() - 1
-                    }
-                };
-                rows[at].ms.push(f[3].to_string());
-                rows[at].share.push(f[4].to_string());
+                let row = rows
+                    .entry((f[0].to_string(), f[1].to_string(), threads))
+                    .or_default();
+                row.ms.push(f[2].to_string());
+                row.share.push(f[3].to_string());
             } else {
                 notes.push(line.to_string());
             }
@@ -200,10 +187,7 @@ fn table() -> Result<(), Box<dyn std::error::Error>> {
     for light in ["sphere", "star"] {
         for (config, _, _) in CONFIGS {
             for threads in THREADS {
-                let Some(r) = rows
-                    .iter()
-                    .find(|r| r.light == light && r.config == config && r.threads == threads)
-                else {
+                let Some(r) = rows.get(&(light.to_string(), config.to_string(), threads)) else {
                     continue;
                 };
                 println!(
@@ -252,7 +236,7 @@ fn measure(
             continue;
         }
         for (config, footprint, lookup) in CONFIGS {
-            for (zi, zoom) in ZOOMS.into_iter().enumerate() {
+            for zoom in ZOOMS {
                 let mut v = base.clone();
                 let half = (fov0.to_radians() / 2.0).tan() / zoom;
                 v["camera"]["fov_y_deg"] = json!((2.0 * half.atan()).to_degrees());
@@ -289,7 +273,7 @@ fn measure(
                     frame(&|q| render::render(&scene, &prep, q, &|_, _| {}).1.seconds);
                 // Ray time is summed over threads; the frame time is wall time.
                 println!(
-                    "cell {light_name}|{config}|{zi}|{:.0}|{:.0}",
+                    "cell {light_name}|{config}|{:.0}|{:.0}",
                     seconds * 1e3,
                     100.0 * ray_s / (seconds * threads as f64)
                 );
