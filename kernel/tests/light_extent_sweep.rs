@@ -14,12 +14,13 @@
 //! single band (`bands = 1`) against the same exact value is printed too: the error of
 //! Eq. 27's model, not of its arithmetic (that is `light_domain_sweep.rs`).
 //!
-//! The extent rule does not meet #20's `1e-4` over this domain yet: 207 of the 387 lit
+//! The extent rule does not meet #20's `1e-4` over this domain yet: 208 of the 387 lit
 //! queries do, and the test prints where the rest come from (near the horizon, the known
-//! band-parameter defect; bands beyond the kernel's 4.5-σ window; neither: chords with a
-//! sharp step inside one panel), see `docs/stability.md` *The Gaussian across the band*.
-//! Asserted, as a ratchet until the kernel fix: every lit query within the committed
-//! subset's measured worst ([`RATCHET`], [`RATCHET_HORIZON`]), at least [`RATCHET_WITHIN`]
+//! band-parameter defect; bands beyond the kernel's 4.5-σ window; neither: mostly lights
+//! below 1e-3 rad, whose short chords carry the same band-parameter rounding), see
+//! `docs/stability.md` *The Gaussian across the band*. Asserted, as a ratchet until the
+//! band-parameter fix: every lit query within the committed subset's measured worst
+//! ([`RATCHET`], [`RATCHET_WINDOW`], [`RATCHET_HORIZON`]), at least [`RATCHET_WITHIN`]
 //! within 1e-4, and a value of at most [`TINY`] wherever the exact value is (no band within
 //! 8 standard deviations meets the light).
 //!
@@ -41,11 +42,13 @@ const MIN_QUERIES: usize = 400;
 
 /// Not bounds: the extent rule does not meet #20's `1e-4` here yet (`docs/stability.md`
 /// *The Gaussian across the band*). These are the committed subset's measured worst
-/// relative errors away from the horizon and near it, and its count of lit queries within
-/// 1e-4, so that a change can only improve them; a fix lowers them.
-const RATCHET: f64 = 0.35;
+/// relative errors by [`Cause`] (other: 3.5e-2, since the cuts at the band's specular
+/// point; 0.31 before them), and its count of lit queries within 1e-4 (208), so that a
+/// change can only improve them; a fix lowers them.
+const RATCHET: f64 = 0.04;
+const RATCHET_WINDOW: f64 = 0.35;
 const RATCHET_HORIZON: f64 = 7.0e3;
-const RATCHET_WITHIN: usize = 200;
+const RATCHET_WITHIN: usize = 205;
 
 /// The band rules compared: `LightParams::bands` and a name.
 const RULES: [(u32, &str); 4] = [
@@ -146,7 +149,8 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
             }
             let limit = match cause {
                 Cause::Horizon => RATCHET_HORIZON,
-                _ => RATCHET,
+                Cause::Window => RATCHET_WINDOW,
+                Cause::Other => RATCHET,
             };
             if !(err <= limit) {
                 bad.push(format!(

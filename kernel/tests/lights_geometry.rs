@@ -222,3 +222,43 @@ fn band_rules_agree_for_a_large_light() {
     }
     assert_eq!(BandRule::from_u32(7), BandRule::Single);
 }
+
+/// `SphereCap::dot_bound`, the band test's cheap first step, must contain `dot_range` for
+/// every cone and direction, or a lit scratch would be skipped as dark: 200 000 seeded
+/// cones (half-angles 1e-6 rad to the whole sphere, both cone kinds, centres from the
+/// zenith to below the horizon) and unit directions in the plane, as the band test passes.
+#[test]
+fn sphere_dot_bound_contains_dot_range() {
+    use scratchwave_kernel::lights::SphereCap;
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut checked = 0;
+    for i in 0..200_000 {
+        let (theta, phi) = (next() * 1.7, next() * std::f64::consts::TAU);
+        let d = 10f64.powf(next() * 6.0);
+        let r = d * 10f64.powf(-6.0 * next()) * if i % 50 == 0 { 2.0 } else { 1.0 };
+        let c = [
+            (d * theta.sin() * phi.cos()) as f32,
+            (d * theta.sin() * phi.sin()) as f32,
+            (d * theta.cos()) as f32,
+        ];
+        let cone = if i % 2 == 0 { Cone::Asin } else { Cone::Atan };
+        let Some(cap) = SphereCap::new(c.into(), r as f32, cone) else {
+            continue;
+        };
+        let a = next() * std::f64::consts::TAU;
+        let u = glam::Vec3::new(a.cos() as f32, a.sin() as f32, 0.0);
+        let (range, bound) = (cap.dot_range(u), cap.dot_bound(u));
+        assert!(
+            bound.0 <= range.0 && bound.1 >= range.1,
+            "cap {cap:?}, u {u}: bound {bound:?} misses range {range:?}"
+        );
+        checked += 1;
+    }
+    assert!(checked > 150_000, "only {checked} caps above the horizon");
+}

@@ -223,6 +223,17 @@ impl LightRegion {
         }
     }
 
+    /// A superset of [`LightRegion::dot_range`] that costs no trigonometry: a sphere's
+    /// [`SphereCap::dot_bound`]; everything for a polygon.
+    #[inline]
+    pub fn dot_bound(&self, u: Vec3) -> (f32, f32) {
+        if LightKind::from_u32(self.kind) == LightKind::Polygon {
+            (-1.0, 1.0)
+        } else {
+            self.sphere.dot_bound(u)
+        }
+    }
+
     /// Adds the values of `u · w` at the light's corners, where the chord of a band
     /// `u · w = c` has kinks: polygon vertices above the horizon, and the points where the
     /// light's boundary meets the horizon.
@@ -520,6 +531,7 @@ fn extent_power(
         }
         i += 1;
     }
+    specular_cuts(region, frame, wo, across, sd, x_lo, x_hi, &mut cuts);
     cuts.sort();
     // The light covers the whole window with no kink in it: the chord is smooth across the
     // band, and 5-point Gauss–Hermite is exact to degree 9 at a fifth of the cost.
@@ -568,6 +580,57 @@ fn extent_power(
         c += 1;
     }
     sum
+}
+
+/// Adds to `cuts` the offsets `x ∈ (x_lo, x_hi)` (standard deviations) where the band's
+/// specular point `ξ₂ = 0` (`w · b₃ = −wo · b₃`, where `|M − P|²` peaks in a lobe `1/W`
+/// wide) enters or leaves the light: there the chord steps by the lobe's whole weight within
+/// `δ = λ/(W·sd)`, so the range is also cut at `x ± δ` and `x ± 4δ` when `δ` is below a
+/// panel. The points trace the circle `w · b₃ = −wo · b₃` (a [`BandCircle`] with the roles
+/// of `t` and `b` swapped, on which `w · t₃ = ρ s`), and its lit intervals' ends are the
+/// crossings.
+#[allow(clippy::too_many_arguments)]
+fn specular_cuts(
+    region: &LightRegion,
+    frame: &SegmentFrame,
+    wo: Vec3,
+    across: &Across,
+    sd: f32,
+    x_lo: f32,
+    x_hi: f32,
+    cuts: &mut Breakpoints,
+) {
+    let Some(peak) = BandCircle::new_offset(frame.bitangent, frame.tangent, wo, 0.0) else {
+        return;
+    };
+    let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
+    let delta = across.lambda / (across.width * sd);
+    let mut ends = Breakpoints::empty();
+    lit_intervals(region, &peak, |s0, s1| {
+        ends.push(s0);
+        ends.push(s1);
+    });
+    let mut i = 0;
+    while i < ends.len && i < MAX_BREAKPOINTS {
+        let x = (peak.rho * ends.s[i] + wo_t) / sd;
+        let mut k = 0;
+        while k < 5 {
+            // x, x ± δ, x ± 4δ; the grading only where the step is narrower than a panel.
+            let d = match k {
+                0 => 0.0,
+                1 => delta,
+                2 => -delta,
+                3 => 4.0 * delta,
+                _ => -4.0 * delta,
+            };
+            let y = x + d;
+            if (k == 0 || delta < EXTENT_PANEL_SDS) && y > x_lo && y < x_hi {
+                cuts.push(y);
+            }
+            k += 1;
+        }
+        i += 1;
+    }
 }
 
 /// The standard deviation of the band in direction cosines, `λ/(2√2 πσ)` (λ, σ in µm).
@@ -636,9 +699,10 @@ const REJECT_SDS: f32 = 4.6;
 pub fn band_may_reach(region: &LightRegion, frame: &SegmentFrame, wo: Vec3, sd: f32) -> bool {
     let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
     let t3 = Vec3::new(frame.tangent.x, frame.tangent.y, 0.0);
-    let (lo, hi) = region.dot_range(t3);
     let reach = REJECT_SDS * sd;
-    lo + wo_t <= reach && hi + wo_t >= -reach
+    let meets = |(lo, hi): (f32, f32)| lo + wo_t <= reach && hi + wo_t >= -reach;
+    // The cheap bound first: it settles most scratches of a small light.
+    meets(region.dot_bound(t3)) && meets(region.dot_range(t3))
 }
 
 /// One scratch's `∫ |S_k|² dξ₁ dξ₂` over the lit band (µm²) at the point `x0`:

@@ -29,6 +29,9 @@ gpu_enum! {
     fallback = Asin;
 }
 
+/// Absolute slack of [`SphereCap::dot_bound`].
+const DOT_BOUND_SLACK: f32 = 1.0e-5;
+
 /// The cone of directions a spherical light fills.
 #[derive(Clone, Copy, Debug)]
 pub struct SphereCap {
@@ -92,6 +95,16 @@ impl SphereCap {
         let near = math::max(theta - self.alpha, 0.0);
         let far = math::min(theta + self.alpha, math::PI);
         (math::cos(far), math::cos(near))
+    }
+
+    /// A cheap superset of [`SphereCap::dot_range`]: `u · d̂ ± (|w − d̂| + 1e-5)`, since
+    /// `|u · w − u · d̂| ≤ |w − d̂|` for unit `u`; the slack covers the rounding of both
+    /// (~1e-7), so a band test that fails on this fails on the exact range too.
+    #[inline]
+    pub fn dot_bound(&self, u: Vec3) -> (f32, f32) {
+        let c = u.dot(self.axis);
+        let r = math::sqrt0(self.chord2) + DOT_BOUND_SLACK;
+        (c - r, c + r)
     }
 
     /// Adds `u · w` at the (up to two) points where the cone's boundary meets the horizon.
