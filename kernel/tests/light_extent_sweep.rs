@@ -14,12 +14,11 @@
 //! single band (`bands = 1`) against the same exact value is printed too: the error of
 //! Eq. 27's model, not of its arithmetic (that is `light_domain_sweep.rs`).
 //!
-//! The extent rule does not meet #20's `1e-4` over this domain yet: 208 of the 387 lit
-//! queries do, and the test prints where the rest come from (near the horizon, the known
-//! band-parameter defect; bands beyond the kernel's 4.5-σ window; neither: mostly lights
-//! below 1e-3 rad, whose short chords carry the same band-parameter rounding), see
-//! `docs/stability.md` *The Gaussian across the band*. Asserted, as a ratchet until the
-//! band-parameter fix: every lit query within the committed subset's measured worst
+//! The extent rule does not meet #20's `1e-4` over this domain yet: 257 of the 387 lit
+//! queries do, and the test prints where the rest come from (near the horizon; bands
+//! beyond the kernel's 4.5-σ window; neither: mostly lights below 1e-3 rad), see
+//! `docs/stability.md` *The Gaussian across the band*. Asserted, as a ratchet: every lit
+//! query within the committed subset's measured worst
 //! ([`RATCHET`], [`RATCHET_WINDOW`], [`RATCHET_HORIZON`]), at least [`RATCHET_WITHIN`]
 //! within 1e-4, and a value of at most [`TINY`] wherever the exact value is (no band within
 //! 8 standard deviations meets the light).
@@ -42,13 +41,16 @@ const MIN_QUERIES: usize = 400;
 
 /// Not bounds: the extent rule does not meet #20's `1e-4` here yet (`docs/stability.md`
 /// *The Gaussian across the band*). These are the committed subset's measured worst
-/// relative errors by [`Cause`] (other: 3.5e-2, since the cuts at the band's specular
-/// point; 0.31 before them), and its count of lit queries within 1e-4 (208), so that a
-/// change can only improve them; a fix lowers them.
-const RATCHET: f64 = 0.04;
+/// relative errors by [`Cause`] (other: 2.4e-2, since the cuts at the band's specular
+/// point, 0.31 before them; near the horizon: 1.0, the kernel's 0 for values below 1e-11
+/// that lie beyond the window, and for 9.9e-16 from a 1.1e-5-rad polygon 1.9e-4 rad above
+/// the horizon, since the band circle keeps `cos φ`, 7.0e3 before), and its count of lit
+/// queries within 1e-4 (257; 207 before both), so that a change can only improve them; a
+/// fix lowers them.
+const RATCHET: f64 = 0.03;
 const RATCHET_WINDOW: f64 = 0.35;
-const RATCHET_HORIZON: f64 = 7.0e3;
-const RATCHET_WITHIN: usize = 205;
+const RATCHET_HORIZON: f64 = 1.0;
+const RATCHET_WITHIN: usize = 255;
 
 /// The band rules compared: `LightParams::bands` and a name.
 const RULES: [(u32, &str); 4] = [

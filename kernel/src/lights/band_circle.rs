@@ -7,8 +7,12 @@
 //! `wi(φ) = c t₃ + ρ (sin φ b₃ + cos φ n)`, `b₃ = (b, 0)`, `n = z`,
 //!
 //! and the upper hemisphere is `cos φ ≥ 0` (see [`super::horizon`]). Along it
-//! `ξ₂ = (ρ sin φ + wo_xy · b) / λ` is linear in `s = sin φ`, so every interval is kept as a
-//! pair of `s` values in `[−1, 1]`.
+//! `ξ₂ = (ρ sin φ + wo_xy · b) / λ` is linear in `s = sin φ`. Every point of an interval
+//! is kept as the pair `(s, z') = (sin φ, cos φ)` ([`ArcPoint`]), both as the crossing
+//! formula gives them: near the horizon (`s → ±1`) an ulp of `s` is `1/cos φ` times longer
+//! along the band, so a chord there is formed from the `z'` of its ends
+//! ([`ArcPoint::s_minus`]) and midpoints from both coordinates, which resolves lit arcs far
+//! below an ulp of `s` (a light straddling the horizon).
 //!
 //! Instead of the paper's half-angle quadratics in the light's own parametrisation, the
 //! crossing of the circle with any plane `wi · m = h` (a light edge's great circle: `h = 0`;
@@ -72,11 +76,10 @@ impl BandCircle {
         })
     }
 
-    /// The direction at `s = sin φ` on the upper half (`cos φ = √(1 − s²)`).
+    /// The direction at the point `p` of the upper half.
     #[inline]
-    pub fn point(&self, s: f32) -> Vec3 {
-        let z = math::sqrt0(1.0 - s * s);
-        self.c * self.t3 + self.rho * (s * self.b3 + z * Vec3::Z)
+    pub fn point(&self, p: ArcPoint) -> Vec3 {
+        self.c * self.t3 + self.rho * (p.s * self.b3 + p.z * Vec3::Z)
     }
 
     /// `ξ₂` (1/µm) at `s`, for the wavelength `lambda` (µm).
@@ -85,11 +88,11 @@ impl BandCircle {
         (self.rho * s + self.wo_b) / lambda
     }
 
-    /// `ξ₂(s1) − ξ₂(s0)` (1/µm), formed from `s1 − s0`: the two `ξ₂` share the offset
-    /// `wo_xy · b`, which can be far larger than the chord between them.
+    /// `ξ₂(p1) − ξ₂(p0)` (1/µm), formed from `s1 − s0` ([`ArcPoint::s_minus`]): the two `ξ₂`
+    /// share the offset `wo_xy · b`, which can be far larger than the chord between them.
     #[inline]
-    pub fn xi2_len(&self, s0: f32, s1: f32, lambda: f32) -> f32 {
-        self.rho * (s1 - s0) / lambda
+    pub fn xi2_len(&self, p0: ArcPoint, p1: ArcPoint, lambda: f32) -> f32 {
+        self.rho * p1.s_minus(p0) / lambda
     }
 
     /// Components `(m_t, m_b, m_z)` of a plane normal in the circle's frame.
@@ -98,10 +101,10 @@ impl BandCircle {
         (m.dot(self.t3), m.dot(self.b3), m.z)
     }
 
-    /// Adds to `out` the `s` of the (up to two) upper-half points where the circle meets
-    /// the plane `wi · m = h`. `slack = R − g ≥ 0` may be passed when the caller can form it
-    /// without cancellation (the sphere does); otherwise pass `None`.
-    pub fn plane_crossings(&self, m: Vec3, h: f32, slack: Option<f32>, out: &mut Breakpoints) {
+    /// Adds to `out` the (up to two) upper-half points where the circle meets the plane
+    /// `wi · m = h`. `slack = R − g ≥ 0` may be passed when the caller can form it without
+    /// cancellation (the sphere does); otherwise pass `None`.
+    pub fn plane_crossings(&self, m: Vec3, h: f32, slack: Option<f32>, out: &mut ArcPoints) {
         let (mt, mb, mz) = self.components(m);
         let r2 = mb * mb + mz * mz;
         if !(r2 > 1.0e-24) {
@@ -125,14 +128,18 @@ impl BandCircle {
             let s = (g * mb + sgn * mz * root) / r2;
             let z = (g * mz - sgn * mb * root) / r2;
             if super::horizon::on_upper_half(z) {
-                out.push(math::clamp(s, -1.0, 1.0));
+                out.push(ArcPoint {
+                    s: math::clamp(s, -1.0, 1.0),
+                    z: math::min(z, 1.0),
+                });
             }
             k += 1;
         }
     }
 }
 
-/// A short sorted list of `s` values on the half circle, fixed capacity, no allocation.
+/// A short list of values (band offsets, kinks), sorted on request; fixed capacity, no
+/// allocation.
 #[derive(Clone, Copy, Debug)]
 pub struct Breakpoints {
     /// Values; only the first `len` are meaningful.
@@ -151,15 +158,6 @@ impl Breakpoints {
         }
     }
 
-    /// The two ends of the upper half circle, `s = ±1` (the horizon).
-    #[inline]
-    pub fn half_circle() -> Breakpoints {
-        let mut b = Breakpoints::empty();
-        b.push(-1.0);
-        b.push(1.0);
-        b
-    }
-
     /// Appends `s` (ignored when full or not finite).
     #[inline]
     pub fn push(&mut self, s: f32) {
@@ -169,47 +167,154 @@ impl Breakpoints {
         }
     }
 
-    /// Sorts ascending (insertion sort: at most a few dozen values).
+    /// Sorts ascending.
     pub fn sort(&mut self) {
-        let mut i = 1;
-        while i < self.len && i < MAX_BREAKPOINTS {
-            let v = self.s[i];
-            let mut j = i;
-            while j > 0 && self.s[j - 1] > v {
-                self.s[j] = self.s[j - 1];
-                j -= 1;
-            }
-            self.s[j] = v;
-            i += 1;
+        insertion_sort(&mut self.s, self.len, |a, b| a < b);
+    }
+}
+
+/// A point of a band circle's upper half: `s = sin φ`, `z = cos φ ≥ 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArcPoint {
+    /// `sin φ`, the coordinate `ξ₂` is linear in.
+    pub s: f32,
+    /// `cos φ`, the height above the horizon (relative to the circle's radius).
+    pub z: f32,
+}
+
+impl ArcPoint {
+    /// The horizon end `φ = −π/2`.
+    pub const START: ArcPoint = ArcPoint { s: -1.0, z: 0.0 };
+    /// The horizon end `φ = π/2`.
+    pub const END: ArcPoint = ArcPoint { s: 1.0, z: 0.0 };
+
+    /// Whether `self` comes before `other` along the half circle (`φ` increasing): by `s`,
+    /// and where two `s` round to the same value, by `z` (falling towards `s = 1`, rising
+    /// from `s = −1`).
+    #[inline]
+    pub fn before(self, other: ArcPoint) -> bool {
+        self.s < other.s
+            || (self.s == other.s
+                && if self.s > 0.0 {
+                    self.z > other.z
+                } else {
+                    self.z < other.z
+                })
+    }
+
+    /// `self.s − p0.s`. Where both lie on one side beyond `|s| = 1/2` it is
+    /// `(z0 − z)(z0 + z)/(s0 + s)`: near the horizon `s` keeps only its absolute accuracy
+    /// (an ulp of 6e-8 there is an arc of 3.5e-4 rad), `z` its relative one.
+    #[inline]
+    pub fn s_minus(self, p0: ArcPoint) -> f32 {
+        if (self.s >= 0.5 && p0.s >= 0.5) || (self.s <= -0.5 && p0.s <= -0.5) {
+            (p0.z - self.z) * (p0.z + self.z) / (p0.s + self.s)
+        } else {
+            self.s - p0.s
         }
     }
 
-    /// Sorts, then calls `visit(s0, s1)` for every maximal run of consecutive sub-intervals
-    /// whose midpoints satisfy `inside` (adjacent lit pieces are merged, so the band
-    /// integral is evaluated once per lit interval).
-    pub fn lit_intervals<I: FnMut(f32) -> bool, V: FnMut(f32, f32)>(
+    /// A point strictly between `self` and `other` (the bisector of the two directions;
+    /// `φ = 0` between the two horizon ends).
+    #[inline]
+    pub fn between(self, other: ArcPoint) -> ArcPoint {
+        let (s, z) = (self.s + other.s, self.z + other.z);
+        let len = math::sqrt(s * s + z * z);
+        if len > 0.0 {
+            ArcPoint {
+                s: s / len,
+                z: z / len,
+            }
+        } else {
+            ArcPoint { s: 0.0, z: 1.0 }
+        }
+    }
+}
+
+/// A short list of [`ArcPoint`]s on one band circle, fixed capacity, no allocation: its
+/// horizon ends and where it crosses a light's boundary.
+#[derive(Clone, Copy, Debug)]
+pub struct ArcPoints {
+    /// Points; only the first `len` are meaningful.
+    pub p: [ArcPoint; MAX_BREAKPOINTS],
+    /// Number of points.
+    pub len: usize,
+}
+
+impl ArcPoints {
+    /// The two ends of the upper half circle (the horizon).
+    #[inline]
+    pub fn half_circle() -> ArcPoints {
+        let mut b = ArcPoints {
+            p: [ArcPoint::START; MAX_BREAKPOINTS],
+            len: 0,
+        };
+        b.push(ArcPoint::START);
+        b.push(ArcPoint::END);
+        b
+    }
+
+    /// Appends `p` (ignored when full or not finite).
+    #[inline]
+    pub fn push(&mut self, p: ArcPoint) {
+        if self.len < MAX_BREAKPOINTS && p.s.is_finite() && p.z.is_finite() {
+            self.p[self.len] = p;
+            self.len += 1;
+        }
+    }
+
+    /// Sorts along the circle ([`ArcPoint::before`]).
+    pub fn sort(&mut self) {
+        insertion_sort(&mut self.p, self.len, ArcPoint::before);
+    }
+
+    /// Sorts, then calls `visit(p0, p1)` for every maximal run of consecutive arcs whose
+    /// midpoints ([`ArcPoint::between`]) satisfy `inside` (adjacent lit pieces are merged,
+    /// so the band integral is evaluated once per lit interval).
+    pub fn lit_intervals<I: FnMut(ArcPoint) -> bool, V: FnMut(ArcPoint, ArcPoint)>(
         &mut self,
         mut inside: I,
         mut visit: V,
     ) {
         self.sort();
         let mut open = false;
-        let mut start = 0.0;
+        let mut start = ArcPoint::START;
         let mut i = 0;
         while i + 1 < self.len && i + 1 < MAX_BREAKPOINTS {
-            let (a, b) = (self.s[i], self.s[i + 1]);
-            let lit = b > a && inside(0.5 * (a + b));
+            let (a, b) = (self.p[i], self.p[i + 1]);
+            let lit = a.before(b) && inside(a.between(b));
             if lit && !open {
                 start = a;
                 open = true;
-            } else if !lit && open && b > a {
+            } else if !lit && open && a.before(b) {
                 visit(start, a);
                 open = false;
             }
             i += 1;
         }
         if open && self.len > 0 && self.len <= MAX_BREAKPOINTS {
-            visit(start, self.s[self.len - 1]);
+            visit(start, self.p[self.len - 1]);
         }
+    }
+}
+
+/// Sorts `v[..len]` so that no element comes `before` an earlier one (insertion sort, stable:
+/// a few dozen values).
+#[inline]
+fn insertion_sort<T: Copy, F: Fn(T, T) -> bool>(
+    v: &mut [T; MAX_BREAKPOINTS],
+    len: usize,
+    before: F,
+) {
+    let mut i = 1;
+    while i < len && i < MAX_BREAKPOINTS {
+        let x = v[i];
+        let mut j = i;
+        while j > 0 && before(x, v[j - 1]) {
+            v[j] = v[j - 1];
+            j -= 1;
+        }
+        v[j] = x;
+        i += 1;
     }
 }

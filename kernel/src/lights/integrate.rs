@@ -20,7 +20,7 @@
 //! over- or under-estimated (measured in `testkit/tests/light_reference.rs`).
 
 use super::band::{SiMode, band_integral_len};
-use super::band_circle::{BandCircle, Breakpoints};
+use super::band_circle::{ArcPoint, ArcPoints, BandCircle, Breakpoints};
 use super::limits::MAX_BREAKPOINTS;
 use super::limits::MAX_VERTICES;
 use super::polygon::SphericalPolygon;
@@ -205,7 +205,7 @@ impl LightRegion {
 
     /// Adds the band's boundary crossings.
     #[inline]
-    pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
+    pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
         if LightKind::from_u32(self.kind) == LightKind::Polygon {
             self.polygon.crossings(band, out)
         } else {
@@ -320,12 +320,16 @@ impl BandRule {
     }
 }
 
-/// The lit intervals of the band, reported as `(s0, s1)` pairs on the half circle.
+/// The lit intervals of the band, reported as `(p0, p1)` pairs on the half circle.
 #[inline]
-pub fn lit_intervals<V: FnMut(f32, f32)>(region: &LightRegion, band: &BandCircle, visit: V) {
-    let mut bp = Breakpoints::half_circle();
+pub fn lit_intervals<V: FnMut(ArcPoint, ArcPoint)>(
+    region: &LightRegion,
+    band: &BandCircle,
+    visit: V,
+) {
+    let mut bp = ArcPoints::half_circle();
     region.crossings(band, &mut bp);
-    bp.lit_intervals(|s| region.contains(band.point(s)), visit);
+    bp.lit_intervals(|p| region.contains(band.point(p)), visit);
 }
 
 /// `∫ |η|² dξ₁` over ℝ (Parseval; 1/µm · µm² = µm).
@@ -471,8 +475,8 @@ fn chord_power(
     let mut part = 0.0;
     if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, offset) {
         let lambda = across.lambda;
-        lit_intervals(region, &band, |s0, s1| {
-            part += across_integral(across, band.xi2(s0, lambda), band.xi2_len(s0, s1, lambda));
+        lit_intervals(region, &band, |p0, p1| {
+            part += across_integral(across, band.xi2(p0.s, lambda), band.xi2_len(p0, p1, lambda));
         });
     }
     part
@@ -606,9 +610,9 @@ fn specular_cuts(
     let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
     let delta = across.lambda / (across.width * sd);
     let mut ends = Breakpoints::empty();
-    lit_intervals(region, &peak, |s0, s1| {
-        ends.push(s0);
-        ends.push(s1);
+    lit_intervals(region, &peak, |p0, p1| {
+        ends.push(p0.s);
+        ends.push(p1.s);
     });
     let mut i = 0;
     while i < ends.len && i < MAX_BREAKPOINTS {

@@ -11,7 +11,7 @@
 //! Degenerate triangles (collinear or repeated vertices, zero area, a vertex at the shading
 //! point, the polygon's plane through the point) contain nothing. Emitters are two-sided.
 
-use super::band_circle::{BandCircle, Breakpoints};
+use super::band_circle::{ArcPoints, BandCircle, Breakpoints};
 use super::limits::MAX_VERTICES;
 use crate::math;
 use glam::Vec3;
@@ -185,7 +185,7 @@ impl SphericalPolygon {
     }
 
     /// Adds where the band crosses the great circles of the polygon's edges.
-    pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
+    pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
             band.plane_crossings(self.edge[m], 0.0, None, out);

@@ -14,7 +14,7 @@
 //! the cancellation of `cos β − cos α` that makes the printed quadratic (Eq. 34) lose all
 //! f32 digits for lights below ~1e-3 rad.
 
-use super::band_circle::{BandCircle, Breakpoints};
+use super::band_circle::{ArcPoints, BandCircle, Breakpoints};
 use crate::math;
 use glam::Vec3;
 
@@ -125,7 +125,7 @@ impl SphereCap {
     }
 
     /// Adds where the band crosses the cone boundary (at most two points).
-    pub fn crossings(&self, band: &BandCircle, out: &mut Breakpoints) {
+    pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
         if self.alpha >= math::PI {
             return;
         }
