@@ -9,16 +9,18 @@
 //! * `κ`, the rule of the other sweeps: the largest relative change of the exact value when
 //!   one f32 input (view, λ, σ, shading point, every light coordinate, every scratch field)
 //!   moves by one ulp;
-//! * `κs`, the resolution of the kernel's band parameter: the largest relative change when
-//!   one end of a lit arc moves by one f32 ulp of `s = sin φ`, the value the kernel keeps
-//!   for it (`lights::band_circle`). Near the horizon (`|s| → 1`) and for chords much
-//!   shorter than `|s|` this is far coarser than the inputs: an end at `s = 0.9998` is
-//!   rounded to 6e-8 in `s`, 3e-6 rad along the band.
+//! * `κs`, the resolution of a band parameter `s = sin φ` kept alone: the largest relative
+//!   change when one end of a lit arc moves by one f32 ulp of `s`. Near the horizon
+//!   (`|s| → 1`) and for chords much shorter than `|s|` this is far coarser than the
+//!   inputs: an end at `s = 0.9998` is rounded to 6e-8 in `s`, 3e-6 rad along the band. The
+//!   kernel keeps `cos φ` beside `s` (`lights::band_circle::ArcPoint`), which removes most
+//!   of that.
 //!
-//! Printed, not asserted: every query against `max(1e-4, 8κ)` (the inputs alone; the
-//! kernel is not there yet, see `docs/stability.md` *Area lights*). Asserted:
-//! `err ≤ max(1e-4, K_LIGHT·max(κ, κs))` (`sweep_common::K_LIGHT`). Exact values below 1e-30 (lights
-//! the band misses) must come out as small.
+//! Asserted: `err ≤ max(1e-4, K_LIGHT·max(κ, κs))` (`sweep_common::K_LIGHT`) for every
+//! query, and against the inputs alone, `max(1e-4, 8κ)` (the rule of the other sweeps,
+//! which the kernel does not meet everywhere yet, see `docs/stability.md` *Area lights*),
+//! at most [`RATCHET_OVER_8K`] queries of the committed subset over. Exact values below
+//! 1e-30 (lights the band misses) must come out as small.
 //!
 //! Groups: the light's kind (sphere with the `asin` or `atan` cone, convex polygon) and its
 //! angular radius, and apart from those the lights that reach within 0.01 rad of the
@@ -39,6 +41,10 @@ use sweep_common::{
 
 /// The committed subset's size (the test refuses fewer).
 const MIN_QUERIES: usize = 1500;
+
+/// Not a bound: the committed subset's count of queries over `max(1e-4, 8κ)` (14 since
+/// the band circle keeps `cos φ`, 225 before), so that a change can only lower it.
+const RATCHET_OVER_8K: usize = 14;
 
 /// The kernel's value of one row.
 fn kernel_value(r: &Row) -> f32 {
@@ -75,9 +81,15 @@ fn light_integral_is_within_its_bound_over_the_domain() {
             .or_default()
             .add_with(K_LIGHT, err, kappa.max(kappa_s), text);
     }
-    println!("against max(1e-4, 8κ), κ the inputs' one-ulp conditioning (not asserted):");
+    println!("against max(1e-4, 8κ), κ the inputs' one-ulp conditioning:");
     report(&strict, 34);
+    let over_8k: usize = strict.values().map(|s| s.over).sum();
     println!("against max(1e-4, 16·max(κ, κs)), κs the band parameter's one-ulp resolution:");
     let bad = report(&stats, 34);
     assert!(bad.is_empty(), "over the bound:\n{}", bad.join("\n"));
+    // The count is the committed subset's; a further sample only prints it.
+    assert!(
+        std::env::var_os("LIGHT_SWEEP_DIR").is_some() || over_8k <= RATCHET_OVER_8K,
+        "{over_8k} queries over max(1e-4, 8κ), more than the {RATCHET_OVER_8K} measured"
+    );
 }
