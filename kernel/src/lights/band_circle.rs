@@ -12,7 +12,10 @@
 //! formula gives them: near the horizon (`s → ±1`) an ulp of `s` is `1/cos φ` times longer
 //! along the band, so a chord there is formed from the `z'` of its ends
 //! ([`ArcPoint::s_minus`]) and midpoints from both coordinates, which resolves lit arcs far
-//! below an ulp of `s` (a light straddling the horizon).
+//! below an ulp of `s` (a light straddling the horizon); beyond `|s| = 1/2` a crossing's `s`
+//! is taken from its `z'`, so the two orders agree. A chord between the two crossings of one
+//! plane (a small sphere light) is the difference of the formula's roots
+//! ([`ArcPoints::chord`]), not of the two rounded `s`.
 //!
 //! Instead of the paper's half-angle quadratics in the light's own parametrisation, the
 //! crossing of the circle with any plane `wi · m = h` (a light edge's great circle: `h = 0`;
@@ -88,11 +91,11 @@ impl BandCircle {
         (self.rho * s + self.wo_b) / lambda
     }
 
-    /// `ξ₂(p1) − ξ₂(p0)` (1/µm), formed from `s1 − s0` ([`ArcPoint::s_minus`]): the two `ξ₂`
+    /// `ξ₂(p1) − ξ₂(p0)` (1/µm) from `ds = s1 − s0` ([`ArcPoints::chord`]): the two `ξ₂`
     /// share the offset `wo_xy · b`, which can be far larger than the chord between them.
     #[inline]
-    pub fn xi2_len(&self, p0: ArcPoint, p1: ArcPoint, lambda: f32) -> f32 {
-        self.rho * p1.s_minus(p0) / lambda
+    pub fn xi2_len(&self, ds: f32, lambda: f32) -> f32 {
+        self.rho * ds / lambda
     }
 
     /// Components `(m_t, m_b, m_z)` of a plane normal in the circle's frame.
@@ -122,18 +125,36 @@ impl BandCircle {
             return;
         }
         let root = math::sqrt(disc);
+        let mut pair = [ArcPoint::START; 2];
+        let mut upper = 0;
         let mut k = 0;
         while k < 2 {
             let sgn = if k == 0 { 1.0 } else { -1.0 };
             let s = (g * mb + sgn * mz * root) / r2;
             let z = (g * mz - sgn * mb * root) / r2;
+            // Beyond |s| = 1/2, s from z: z places the point finer there (an ulp of s is
+            // 1/z times longer along the circle), and s then falls as z rises, so the order
+            // by s agrees with the order by z ([`ArcPoint::before`], [`ArcPoint::s_minus`]).
+            let s = if s > 0.5 {
+                math::sqrt0(1.0 - z * z)
+            } else if s < -0.5 {
+                -math::sqrt0(1.0 - z * z)
+            } else {
+                s
+            };
             if super::horizon::on_upper_half(z) {
-                out.push(ArcPoint {
+                pair[k] = ArcPoint {
                     s: math::clamp(s, -1.0, 1.0),
                     z: math::min(z, 1.0),
-                });
+                };
+                out.push(pair[k]);
+                upper += 1;
             }
             k += 1;
+        }
+        if upper == 2 {
+            // s₊ − s₋ = 2 m_z √(R² − g²)/R²: the shared term g m_b/R² drops out.
+            out.set_pair(pair, 2.0 * mz * root / r2);
         }
     }
 }
@@ -233,12 +254,21 @@ impl ArcPoint {
 
 /// A short list of [`ArcPoint`]s on one band circle, fixed capacity, no allocation: its
 /// horizon ends and where it crosses a light's boundary.
+///
+/// Beside them, the two crossings of the last plane met twice on the upper half and the
+/// exact difference of their `s`: each `s` is rounded to an ulp of `|s|`, so `s₁ − s₀`
+/// carries that error into a chord far shorter than `|s|` (a small sphere light), while
+/// the difference of the crossing formula's two roots is formed without it.
 #[derive(Clone, Copy, Debug)]
 pub struct ArcPoints {
     /// Points; only the first `len` are meaningful.
     pub p: [ArcPoint; MAX_BREAKPOINTS],
     /// Number of points.
     pub len: usize,
+    /// Two crossings of one plane (the horizon ends until a plane has two).
+    pair: [ArcPoint; 2],
+    /// `pair[0].s − pair[1].s`, exactly as the crossing formula gives it.
+    pair_chord: f32,
 }
 
 impl ArcPoints {
@@ -248,6 +278,8 @@ impl ArcPoints {
         let mut b = ArcPoints {
             p: [ArcPoint::START; MAX_BREAKPOINTS],
             len: 0,
+            pair: [ArcPoint::END, ArcPoint::START],
+            pair_chord: 2.0,
         };
         b.push(ArcPoint::START);
         b.push(ArcPoint::END);
@@ -263,15 +295,38 @@ impl ArcPoints {
         }
     }
 
+    /// Records two crossings of one plane and `pair[0].s − pair[1].s`.
+    #[inline]
+    pub fn set_pair(&mut self, pair: [ArcPoint; 2], chord: f32) {
+        if chord.is_finite() {
+            self.pair = pair;
+            self.pair_chord = chord;
+        }
+    }
+
+    /// `p1.s − p0.s`: the recorded pair's own difference where `(p0, p1)` are its two
+    /// crossings, else [`ArcPoint::s_minus`].
+    #[inline]
+    pub fn chord(&self, p0: ArcPoint, p1: ArcPoint) -> f32 {
+        if p0 == self.pair[1] && p1 == self.pair[0] {
+            self.pair_chord
+        } else if p0 == self.pair[0] && p1 == self.pair[1] {
+            -self.pair_chord
+        } else {
+            p1.s_minus(p0)
+        }
+    }
+
     /// Sorts along the circle ([`ArcPoint::before`]).
     pub fn sort(&mut self) {
         insertion_sort(&mut self.p, self.len, ArcPoint::before);
     }
 
-    /// Sorts, then calls `visit(p0, p1)` for every maximal run of consecutive arcs whose
+    /// Sorts, then calls `visit(p0, p1, ds)` for every maximal run of consecutive arcs whose
     /// midpoints ([`ArcPoint::between`]) satisfy `inside` (adjacent lit pieces are merged,
-    /// so the band integral is evaluated once per lit interval).
-    pub fn lit_intervals<I: FnMut(ArcPoint) -> bool, V: FnMut(ArcPoint, ArcPoint)>(
+    /// so the band integral is evaluated once per lit interval); `ds = p1.s − p0.s`
+    /// ([`ArcPoints::chord`]).
+    pub fn lit_intervals<I: FnMut(ArcPoint) -> bool, V: FnMut(ArcPoint, ArcPoint, f32)>(
         &mut self,
         mut inside: I,
         mut visit: V,
@@ -287,13 +342,14 @@ impl ArcPoints {
                 start = a;
                 open = true;
             } else if !lit && open && a.before(b) {
-                visit(start, a);
+                visit(start, a, self.chord(start, a));
                 open = false;
             }
             i += 1;
         }
         if open && self.len > 0 && self.len <= MAX_BREAKPOINTS {
-            visit(start, self.p[self.len - 1]);
+            let end = self.p[self.len - 1];
+            visit(start, end, self.chord(start, end));
         }
     }
 }

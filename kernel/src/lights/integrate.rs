@@ -271,7 +271,8 @@ gpu_enum! {
     /// from the tangent band (and jumps where the band circle is small), which no Gauss–Hermite
     /// rule resolves (9 and 15 points were tried: 95.5 % and 97 % of the sweep within 1 %).
     /// [`BandRule::Extent`] instead finds the range of ξ₁ the light covers, cuts it at the
-    /// chord's kinks (polygon corners, the horizon meeting the light) and integrates the
+    /// chord's kinks (polygon corners, the horizon meeting the light) and steps (the band's
+    /// specular point entering the light, graded to the sinc lobe's width) and integrates the
     /// Gaussian-weighted chord over each panel with an 8-point Gauss–Legendre rule in
     /// `1 − cos t`, which absorbs square roots and kinks at the panel ends; a light covering
     /// the whole window without a kink gets the 5-point Gauss–Hermite rule.
@@ -283,7 +284,7 @@ gpu_enum! {
         /// 5-point Gauss–Hermite.
         Hermite5 = 5,
         /// Bands placed over the light's own ξ₁ range ([`LightRegion::dot_range`]), panel by
-        /// panel between its kinks (`bands = 20` in [`LightParams`]).
+        /// panel between its kinks and steps (`bands = 20` in [`LightParams`]).
         Extent = 20,
     }
     fallback = Single;
@@ -320,9 +321,10 @@ impl BandRule {
     }
 }
 
-/// The lit intervals of the band, reported as `(p0, p1)` pairs on the half circle.
+/// The lit intervals of the band, reported as `(p0, p1, p1.s − p0.s)` on the half circle
+/// ([`ArcPoints::lit_intervals`]).
 #[inline]
-pub fn lit_intervals<V: FnMut(ArcPoint, ArcPoint)>(
+pub fn lit_intervals<V: FnMut(ArcPoint, ArcPoint, f32)>(
     region: &LightRegion,
     band: &BandCircle,
     visit: V,
@@ -475,8 +477,8 @@ fn chord_power(
     let mut part = 0.0;
     if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, offset) {
         let lambda = across.lambda;
-        lit_intervals(region, &band, |p0, p1| {
-            part += across_integral(across, band.xi2(p0.s, lambda), band.xi2_len(p0, p1, lambda));
+        lit_intervals(region, &band, |p0, _, ds| {
+            part += across_integral(across, band.xi2(p0.s, lambda), band.xi2_len(ds, lambda));
         });
     }
     part
@@ -504,7 +506,8 @@ fn fixed_rule_power(
 
 /// The extent rule's `∫ chord_power(x·sd) φ(x) dx` (φ the standard normal density) over the
 /// light's own range of `x`: the range is cut where the chord has kinks (polygon corners, the
-/// horizon meeting the light's boundary) and into panels at most [`EXTENT_PANEL_SDS`] wide,
+/// horizon meeting the light's boundary), where it steps (the band's specular point entering
+/// the light, [`specular_cuts`]) and into panels at most [`EXTENT_PANEL_SDS`] wide,
 /// and each panel gets the 8-point Gauss–Legendre rule in `1 − cos t`, whose nodes crowd
 /// at both ends where the chord opens like a square root or kinks.
 fn extent_power(
@@ -535,7 +538,7 @@ fn extent_power(
         }
         i += 1;
     }
-    specular_cuts(region, frame, wo, across, sd, x_lo, x_hi, &mut cuts);
+    specular_cuts(region, frame, wo, wo_t, across, sd, (x_lo, x_hi), &mut cuts);
     cuts.sort();
     // The light covers the whole window with no kink in it: the chord is smooth across the
     // band, and 5-point Gauss–Hermite is exact to degree 9 at a fifth of the cost.
@@ -598,28 +601,21 @@ fn specular_cuts(
     region: &LightRegion,
     frame: &SegmentFrame,
     wo: Vec3,
+    wo_t: f32,
     across: &Across,
     sd: f32,
-    x_lo: f32,
-    x_hi: f32,
+    (x_lo, x_hi): (f32, f32),
     cuts: &mut Breakpoints,
 ) {
     let Some(peak) = BandCircle::new_offset(frame.bitangent, frame.tangent, wo, 0.0) else {
         return;
     };
-    let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
     let delta = across.lambda / (across.width * sd);
-    let mut ends = Breakpoints::empty();
-    lit_intervals(region, &peak, |p0, p1| {
-        ends.push(p0.s);
-        ends.push(p1.s);
-    });
-    let mut i = 0;
-    while i < ends.len && i < MAX_BREAKPOINTS {
-        let x = (peak.rho * ends.s[i] + wo_t) / sd;
+    // x, x ± δ, x ± 4δ; the grading only where the step is narrower than a panel.
+    let mut cut_at = |p: ArcPoint| {
+        let x = (peak.rho * p.s + wo_t) / sd;
         let mut k = 0;
         while k < 5 {
-            // x, x ± δ, x ± 4δ; the grading only where the step is narrower than a panel.
             let d = match k {
                 0 => 0.0,
                 1 => delta,
@@ -633,8 +629,11 @@ fn specular_cuts(
             }
             k += 1;
         }
-        i += 1;
-    }
+    };
+    lit_intervals(region, &peak, |p0, p1, _| {
+        cut_at(p0);
+        cut_at(p1);
+    });
 }
 
 /// The standard deviation of the band in direction cosines, `λ/(2√2 πσ)` (λ, σ in µm).
