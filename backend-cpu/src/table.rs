@@ -4,14 +4,12 @@ use crate::lanes::{LANES, LaneFn, map_lanes, map_lanes_baseline};
 use crate::parallel::{Backend, map};
 use scratchwave_host::{FootprintRow, ScratchLookup};
 use scratchwave_kernel::footprint::Ellipse;
-use scratchwave_kernel::ghs::GhsParams;
 use scratchwave_kernel::ghs::g1::G1Table;
+use scratchwave_kernel::ghs::{self, GhsParams};
 use scratchwave_kernel::lane::{Lanes, V3};
 use scratchwave_kernel::scratch::response::CUTOFF_SIGMAS;
 use scratchwave_kernel::scratch::{LaneUse, Scratch, ScratchBvh};
-use scratchwave_kernel::table::{
-    TableParams, TableQuery, evaluate, evaluate_batch, evaluate_ghs, evaluate_ghs_lanes,
-};
+use scratchwave_kernel::table::{TableParams, TableQuery, evaluate, evaluate_batch, evaluate_ghs};
 use scratchwave_kernel::units::direction;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -183,7 +181,7 @@ impl LaneFn for GhsTable<'_> {
     type Out = f32;
     #[inline(always)]
     fn lanes(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
-        evaluate_ghs_lanes(
+        ghs::brdf_lanes(
             self.0,
             G1Table::BUILTIN,
             V3::from_vecs(q.map(|q| direction(q.wi))),

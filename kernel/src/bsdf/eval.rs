@@ -2,14 +2,16 @@
 //!
 //! The scratch models walk the scratch lookup once for all wavelengths
 //! ([`scratch_response_spectral`], which also gathers ρc when the model needs it) and finish
-//! each wavelength with [`table::model_value`], so every value equals [`table::evaluate`]
-//! (and the renderer's `brdf`) bit for bit. GHS goes through [`table::evaluate_ghs_with_g1_table`]; the
-//! `(1 − ρc)` GHS base of WernerBlended and Velinov follows Werner §5. With a footprint,
-//! Velinov's model is averaged over it ([`velinov_footprint_brdf_spectral`], Velinov §4, one
-//! walk for all wavelengths); the coherent models and GHS are point-sampled at its centre.
+//! each wavelength with [`model_value`] ([`scratch_point_values`]; the table interface's
+//! `table::evaluate` is that function at one wavelength). GHS is [`ghs::brdf`], the GHS
+//! table's function too; the `(1 − ρc)` GHS base of WernerBlended and Velinov follows
+//! Werner §5. With a footprint, Velinov's model is averaged over it
+//! ([`velinov_footprint_brdf_spectral`], Velinov §4, one walk for all wavelengths); the
+//! coherent models and GHS are point-sampled at its centre.
 
+use super::scratch_models::model_value;
 use super::{BsdfMaterial, Lookup, ShadingFrame, ShadingPoint, Spectrum, Wavelengths};
-use crate::ghs::g1::G1Table;
+use crate::ghs::{self, g1::G1Table};
 use crate::material::Reflectance;
 use crate::math;
 use crate::render::footprint::velinov_footprint_brdf_spectral;
@@ -17,7 +19,6 @@ use crate::render::shading::SceneModel;
 use crate::scratch::{
     MAX_SPECTRAL, ScratchSet, SpectralInputs, scratch_area_density, scratch_response_spectral,
 };
-use crate::table::{self, TableQuery};
 use crate::units::{depth_half_turns_per_um, direction, um_from_nm, xi_of};
 use glam::{Vec2, Vec3};
 
@@ -32,14 +33,12 @@ pub fn eval<S: ScratchSet>(
     lk: &Lookup<'_, S>,
 ) -> Spectrum {
     let set = &lk.scratches;
-    let wi = direction(wi.to_array());
-    let wo = direction(wo.to_array());
     let n = wl.len();
     // A plain local array, stored to by run-time index (see `scratch_response_spectral`).
     let mut vals = [0.0; MAX_SPECTRAL];
-    if !(wi.z > 0.0 && wo.z > 0.0) {
+    let Some((wi, wo)) = upper_directions(wi, wo) else {
         return Spectrum::ZERO;
-    }
+    };
     if m.scene_model() == SceneModel::Ghs {
         let mut j = 0;
         while j < MAX_SPECTRAL && j < n {
@@ -52,11 +51,10 @@ pub fn eval<S: ScratchSet>(
     if !(sigma > 0.0) {
         return Spectrum::ZERO;
     }
-    let params = m.table_params();
-    let model = m.table_model();
     let ghs_base = m.has_ghs_base();
     let rho = match (m.scene_model(), sp.footprint()) {
         (SceneModel::Velinov, Some(e)) => {
+            let params = m.table_params();
             vals =
                 velinov_footprint_brdf_spectral(&params, &m.material, wi, wo, &e, &wl.nm, n, set);
             // The renderer weights a GHS base by 1 − ρc at the footprint centre.
@@ -67,32 +65,9 @@ pub fn eval<S: ScratchSet>(
             }
         }
         _ => {
-            let (xi, depth) = spectral_phases(m, wi, wo, wl);
-            let q = SpectralInputs {
-                x0: sp.x(),
-                xi,
-                depth_half_turns_per_um: depth,
-                count: n as u32,
-                sigma,
-                eta: m.eta_mode(),
-                area_density: ghs_base || (model == table::Model::Velinov && m.base_gaussian == 1),
-            };
-            let terms = scratch_response_spectral(set, &q);
-            let mut reflectance = Reflectance::new(&m.material, wi, wo);
-            let mut j = 0;
-            while j < MAX_SPECTRAL && j < n {
-                vals[j] = table::model_value(
-                    model,
-                    m.base_gaussian == 1,
-                    &terms[j],
-                    xi[j],
-                    sigma,
-                    reflectance.at(wl.nm[j]),
-                    um_from_nm(wl.nm[j]),
-                );
-                j += 1;
-            }
-            terms[0].area_density
+            let (v, rho) = scratch_point_values(m, sp.x(), wi, wo, wl, set);
+            vals = v;
+            rho
         }
     };
     if ghs_base {
@@ -109,6 +84,67 @@ pub fn eval<S: ScratchSet>(
     Spectrum { v: vals }
 }
 
+/// `wi` and `wo` normalised as every interface reads them ([`direction`]), or `None` when
+/// either is not above the horizon (or degenerate).
+#[inline]
+pub fn upper_directions(wi: Vec3, wo: Vec3) -> Option<(Vec3, Vec3)> {
+    let wi = direction(wi.to_array());
+    let wo = direction(wo.to_array());
+    if wi.z > 0.0 && wo.z > 0.0 {
+        Some((wi, wo))
+    } else {
+        None
+    }
+}
+
+/// A scratch model's values at the point `x` (µm, no footprint) per wavelength, without a
+/// GHS base, and ρc at `x` (0 unless the model or its GHS base needs it): one scratch walk
+/// ([`scratch_response_spectral`]) finished per wavelength by [`model_value`]. `wi`, `wo`
+/// come from [`upper_directions`]; zeros when σ is not positive. For model `Ghs` (no
+/// scratch model) this is Werner's.
+pub fn scratch_point_values<S: ScratchSet>(
+    m: &BsdfMaterial,
+    x: Vec2,
+    wi: Vec3,
+    wo: Vec3,
+    wl: &Wavelengths,
+    set: &S,
+) -> ([f32; MAX_SPECTRAL], f32) {
+    let mut vals = [0.0; MAX_SPECTRAL];
+    let sigma = m.sigma_um;
+    if !(sigma > 0.0) {
+        return (vals, 0.0);
+    }
+    let n = wl.len();
+    let model = m.table_model();
+    let (xi, depth) = spectral_phases(m, wi, wo, wl);
+    let q = SpectralInputs {
+        x0: x,
+        xi,
+        depth_half_turns_per_um: depth,
+        count: n as u32,
+        sigma,
+        eta: m.eta_mode(),
+        area_density: m.needs_area_density(),
+    };
+    let terms = scratch_response_spectral(set, &q);
+    let mut reflectance = Reflectance::new(&m.material, wi, wo);
+    let mut j = 0;
+    while j < MAX_SPECTRAL && j < n {
+        vals[j] = model_value(
+            model,
+            m.base_gaussian == 1,
+            &terms[j],
+            xi[j],
+            sigma,
+            reflectance.at(wl.nm[j]),
+            um_from_nm(wl.nm[j]),
+        );
+        j += 1;
+    }
+    (vals, terms[0].area_density)
+}
+
 /// [`eval`] for world directions in `frame`.
 pub fn eval_world<S: ScratchSet>(
     m: &BsdfMaterial,
@@ -122,16 +158,10 @@ pub fn eval_world<S: ScratchSet>(
     eval(m, sp, frame.to_local(wi), frame.to_local(wo), wl, lk)
 }
 
-/// The GHS BRDF at one wavelength (nm), through the table's function.
+/// The GHS BRDF at one wavelength (nm): [`ghs::brdf`].
 #[inline]
 pub(crate) fn ghs_value(m: &BsdfMaterial, g1: G1Table, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
-    let q = TableQuery {
-        wi: wi.to_array(),
-        lambda_nm,
-        wo: wo.to_array(),
-        ..TableQuery::default()
-    };
-    table::evaluate_ghs_with_g1_table(&m.ghs, g1, &q)
+    ghs::brdf(&m.ghs, g1, wi, wo, lambda_nm)
 }
 
 /// `ξ` and the depth phase per wavelength for one direction pair.

@@ -7,11 +7,12 @@
 //! The table spec's default (`DepthTerm::SmallAngle` for every model) is a conformance
 //! convention and is not inherited here.
 
+use super::scratch_models::Model;
 use crate::ghs::GhsParams;
 use crate::material::Material;
 use crate::render::shading::{BaseKind, SceneModel, ShadeMaterial};
 use crate::scratch::{DepthTerm, EtaMode};
-use crate::table::{Model, TableParams};
+use crate::table::TableParams;
 use bytemuck::{Pod, Zeroable};
 
 gpu_enum! {
@@ -25,6 +26,17 @@ gpu_enum! {
         Exact = 2,
     }
     fallback = ModelDefault;
+}
+
+impl DepthChoice {
+    /// The choice that names `term` explicitly.
+    #[inline]
+    pub fn explicit(term: DepthTerm) -> DepthChoice {
+        match term {
+            DepthTerm::Exact => DepthChoice::Exact,
+            DepthTerm::SmallAngle => DepthChoice::SmallAngle,
+        }
+    }
 }
 
 /// One material of the BSDF interface. GPU-visible: 112 bytes.
@@ -108,11 +120,7 @@ impl BsdfMaterial {
             *m
         };
         let m = &m;
-        let depth = if DepthTerm::from_u32(m.table.depth_term) == DepthTerm::Exact {
-            DepthChoice::Exact
-        } else {
-            DepthChoice::SmallAngle
-        };
+        let depth = DepthChoice::explicit(DepthTerm::from_u32(m.table.depth_term));
         BsdfMaterial {
             model: m.model,
             base: m.base,
@@ -124,6 +132,24 @@ impl BsdfMaterial {
             material: m.material,
             ghs: m.ghs,
         }
+    }
+
+    /// A table's scratch model (`params`, with the query's `material`) as a BSDF material:
+    /// the table's depth term kept as written, no GHS base (the table's `werner_blended`
+    /// leaves the base to the caller, Werner §5). [`crate::table::evaluate`] is
+    /// [`crate::bsdf::eval::scratch_point_values`] of this material.
+    pub fn from_table(params: &TableParams, material: Material) -> BsdfMaterial {
+        let model = match Model::from_u32(params.model) {
+            Model::Werner => SceneModel::Werner,
+            Model::WernerBlended => SceneModel::WernerBlended,
+            Model::Velinov => SceneModel::Velinov,
+        };
+        let depth = DepthChoice::explicit(DepthTerm::from_u32(params.depth_term));
+        let mut m = BsdfMaterial::scratch_model(model, params.sigma_um, material);
+        m.eta = params.eta;
+        m.depth = depth as u32;
+        m.base_gaussian = params.base_gaussian;
+        m
     }
 
     /// The model.
@@ -175,6 +201,12 @@ impl BsdfMaterial {
         let m = self.scene_model();
         BaseKind::from_u32(self.base) == BaseKind::Ghs
             && (m == SceneModel::WernerBlended || m == SceneModel::Velinov)
+    }
+
+    /// Whether the scratch walk gathers ρc: for a GHS base, or Velinov's Gaussian base.
+    #[inline]
+    pub fn needs_area_density(&self) -> bool {
+        self.has_ghs_base() || (self.table_model() == Model::Velinov && self.base_gaussian == 1)
     }
 
     /// Whether the Gaussian base response is part of the BRDF (Werner; Velinov with

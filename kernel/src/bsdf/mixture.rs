@@ -250,7 +250,7 @@ fn ring_kappa(sigma: f32, lambda: f32, frame: &SegmentFrame) -> f32 {
 /// The GHS component's sampler input: the material prepared at `λ_nm`.
 #[inline]
 fn ghs_at<'t>(m: &BsdfMaterial, g1: G1Table<'t>, lambda_nm: f32) -> Ghs<'t> {
-    Ghs::with_g1_table(&m.ghs, um_from_nm(lambda_nm), g1)
+    Ghs::at_nm(&m.ghs, lambda_nm, g1)
 }
 
 /// Scratch lobe density at `wi` for one strategy.

@@ -16,7 +16,8 @@
 //! | `frame` | [`ShadingFrame`]: world ↔ local |
 //! | `wavelengths` | [`Wavelengths`]: RGB set, stratified spectral sampling with pdf |
 //! | `material` | [`BsdfMaterial`], its per-paper depth-phase default, conversion from the renderer's record |
-//! | `eval` | [`eval()`]: every wavelength from one scratch walk |
+//! | `eval` | [`eval()`]: every wavelength from one scratch walk; its point values are the table interface's |
+//! | `scratch_models` | [`scratch_models::Model`] and the one formula from scratch terms to BRDF (Werner Eq. 15, §5; Velinov Eqs. 6–7) |
 //! | `lobe1d` | truncated logistic / Cauchy mixtures (closed-form CDF and inverse) |
 //! | `lobes` | the directional lobes: disk-product lobes (this crate), Werner §5's Gaussian base and vMF ring |
 //! | `mixture` | component weights, [`sample`] and [`pdf`]: balance heuristic over base, scratches and GHS, and over the wavelengths |
@@ -32,6 +33,7 @@ pub mod lobe1d;
 pub mod lobes;
 pub mod material;
 pub mod mixture;
+pub mod scratch_models;
 pub mod wavelengths;
 
 pub use eval::{eval, eval_world};

@@ -34,6 +34,7 @@ use crate::conductor::{self, Conductor};
 use crate::fresnel::fresnel;
 use crate::lane::{Real, V3, branch};
 use crate::math;
+use crate::units::um_from_nm;
 use bytemuck::{Pod, Zeroable};
 use g1::G1Table;
 use glam::Vec3;
@@ -210,13 +211,30 @@ impl Ghs<'static> {
 
 impl<'t, R: Real> Ghs<'t, R> {
     /// Clamps `params` into the supported ranges ([`limits`], [`g1::P_MIN`]…) and
-    /// precomputes the wavelength-dependent constants. `lambda_um` is clamped to ≥ 1e-3 µm.
+    /// precomputes the wavelength-dependent constants. `lambda_um` is clamped to ≥ 1e-3 µm;
+    /// a spectral IOR is read at `1000·lambda_um` nm ([`Ghs::at_nm`] reads it at the
+    /// caller's nm).
     #[inline(always)]
     pub fn with_g1_table(params: &GhsParams, lambda_um: R, g1_table: G1Table<'t>) -> Self {
         let lambda = sane(lambda_um, 1.0e-3, 1.0e3);
+        Ghs::prepare(params, lambda, lambda * R::splat(1.0e3), g1_table)
+    }
+
+    /// [`Ghs::with_g1_table`] at `lambda_nm` (nm, the unit of the material and table
+    /// interfaces): the formulas get `λ = lambda_nm/1000` µm, a spectral IOR is read at
+    /// `lambda_nm` itself (no round trip through µm). Clamped to 1 nm – 1 mm.
+    #[inline(always)]
+    pub fn at_nm(params: &GhsParams, lambda_nm: R, g1_table: G1Table<'t>) -> Self {
+        let nm = sane(lambda_nm, 1.0, 1.0e6);
+        Ghs::prepare(params, um_from_nm(nm), nm, g1_table)
+    }
+
+    /// The constructors' common part: `lambda` (µm) and `lambda_nm` already clamped.
+    #[inline(always)]
+    fn prepare(params: &GhsParams, lambda: R, lambda_nm: R, g1_table: G1Table<'t>) -> Self {
         let (n, k) = conductor::ior(
             Conductor::from_u32(params.conductor),
-            lambda * R::splat(1.0e3),
+            lambda_nm,
             params.n,
             params.k,
         );
@@ -464,6 +482,34 @@ pub fn evaluate_with_g1_table(
     lambda_um: f32,
 ) -> f32 {
     Ghs::with_g1_table(params, lambda_um, g1_table).eval(wi, wo)
+}
+
+/// The GHS BRDF (1/sr, no cosine) at `lambda_nm` (nm) for unit local directions: the
+/// material interface's and the GHS table's one entry point ([`Ghs::at_nm`]). 0 below the
+/// horizon, for `lambda_nm ≤ 0`, and wherever the value is not finite and positive.
+#[inline(always)]
+pub fn brdf_lanes<R: Real>(
+    params: &GhsParams,
+    g1_table: G1Table,
+    wi: V3<R>,
+    wo: V3<R>,
+    lambda_nm: R,
+) -> R {
+    let zero = R::splat(0.0);
+    branch!(
+        wi.z.gt(zero) & wo.z.gt(zero) & lambda_nm.gt(zero),
+        {
+            let r = Ghs::at_nm(params, lambda_nm, g1_table).eval_lanes(wi, wo);
+            R::select(r.is_finite() & r.gt(zero), r, zero)
+        },
+        zero,
+    )
+}
+
+/// [`brdf_lanes`] for one query.
+#[inline]
+pub fn brdf(params: &GhsParams, g1_table: G1Table, wi: Vec3, wo: Vec3, lambda_nm: f32) -> f32 {
+    brdf_lanes(params, g1_table, wi.into(), wo.into(), lambda_nm)
 }
 
 /// [`evaluate_with_g1_table`] for one query per lane (the SIMD backend's batch entry point):

@@ -3,8 +3,8 @@
 //! viewer, `wi` towards the light.
 //!
 //! * The BRDF is the material interface's [`bsdf::eval()`] (one scratch walk for up to four
-//!   wavelengths), whose scratch models equal [`table::evaluate`] (the `table` command's
-//!   function) bit for bit; GHS is [`table::evaluate_ghs_with_g1_table`].
+//!   wavelengths); the `table` command's [`crate::table::evaluate`] is its point values at
+//!   one wavelength. GHS is [`ghs::brdf`].
 //! * `werner_blended` and `velinov` with a GHS base add `(1 − ρc)·f_base` (Werner 2017 §5;
 //!   Velinov 2018 Eq. 7's `(1 − ρc)` weight), ρc from [`scratch_area_density`].
 //! * Point light: `f·max(cos θi, 0)·I/d²`; directional: `f·max(cos θi, 0)·E`.
@@ -19,7 +19,7 @@ use super::footprint::footprint_density;
 use super::surface::SurfacePoint;
 use crate::bsdf::{self, BsdfMaterial, Lookup, ShadingPoint, Spectrum, Wavelengths};
 use crate::footprint::Ellipse;
-use crate::ghs::GhsParams;
+use crate::ghs::{self, GhsParams};
 use crate::lights::{
     Cone, Light, LightMethod, LightParams, LightRegion, MAX_LAMBDAS, light_integrals_in,
     light_may_reach,
@@ -27,7 +27,8 @@ use crate::lights::{
 use crate::material::Material;
 use crate::math;
 use crate::scratch::{ScratchSet, scratch_area_density};
-use crate::table::{self, TableParams, TableQuery};
+use crate::table::TableParams;
+use crate::units::direction;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 
@@ -87,19 +88,6 @@ pub struct ShadeMaterial {
 }
 
 const _: () = assert!(core::mem::size_of::<ShadeMaterial>() == 128);
-
-/// The scratch-model table query of one shading evaluation.
-#[inline]
-fn query(m: &ShadeMaterial, wi: Vec3, wo: Vec3, x: Vec2, lambda_nm: f32) -> TableQuery {
-    TableQuery {
-        wi: wi.to_array(),
-        lambda_nm,
-        wo: wo.to_array(),
-        x: x.to_array(),
-        material: m.material,
-        ..TableQuery::default()
-    }
-}
 
 /// `1 − ρc` at `x` (≥ 0), the base weight.
 #[inline]
@@ -464,8 +452,13 @@ pub fn base_node_radiance<S: ScratchSet>(
     if !(wi.z > 0.0) {
         return 0.0;
     }
-    let q = query(m, wi, wo, sp.x_um, lambda_nm);
-    let g = table::evaluate_ghs_with_g1_table(&m.ghs, lk.g1, &q);
+    let g = ghs::brdf(
+        &m.ghs,
+        lk.g1,
+        direction(wi.to_array()),
+        direction(wo.to_array()),
+        lambda_nm,
+    );
     base_weight(m, sp.x_um, &lk.scratches) * g * wi.z * radiance * node.weight
 }
 
