@@ -565,8 +565,9 @@ impl Lobe1 {
 
 /// Whether a branch holding a loop (the Gaussian interval integral, the Newton steps) is
 /// evaluated for every input and its result selected: on SPIR-V, where such a branch taken
-/// differently by neighbouring invocations returned wrong values on lavapipe
-/// (ARCHITECTURE.md *Divergence*); on the CPU only where its result is used.
+/// differently by neighbouring invocations returned wrong values on lavapipe (Mesa 22.3;
+/// not needed on Mesa 25, ARCHITECTURE.md *Divergence*); on the CPU only where its result
+/// is used.
 const UNIFORM_CONTROL: bool = cfg!(target_arch = "spirv");
 
 /// Whether the standardised interval `[za, zb]` of width `d` is narrow: every lobe's

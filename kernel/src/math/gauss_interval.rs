@@ -167,6 +167,7 @@ fn endpoint_faddeeva<R: Real>(
 /// for a footprint average that depended on the other footprints of its SIMD group (2.4e-3
 /// off in `backend-spirv/tests/table.rs`, right when evaluated alone). Evaluating both ends
 /// unconditionally keeps the control flow uniform; the callers discard an unneeded end.
+/// Not needed on Mesa 25's lavapipe (ARCHITECTURE.md *Divergence*).
 #[cfg(target_arch = "spirv")]
 #[inline(always)]
 fn endpoint_faddeeva<R: Real>(

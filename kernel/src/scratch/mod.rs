@@ -26,8 +26,7 @@ pub use record::{Scratch, SegmentFrame};
 pub use response::{LaneUse, scratch_response_batch};
 pub use response::{
     MAX_SPECTRAL, ResponseInputs, ScratchTerms, SpectralInputs, base_response, base_response_lanes,
-    scratch_area_density, scratch_response, scratch_response_spectral, scratch_term,
-    scratch_term_lanes,
+    scratch_area_density, scratch_response_spectral, scratch_term, scratch_term_lanes,
 };
 pub use set::{NearCursor, ScratchBvh, ScratchSet, ScratchSlice};
 pub use spatial_phase::{EtaMode, eta_finite, eta_infinite};

@@ -106,29 +106,18 @@ pub struct ResponseInputs<R = f32> {
     pub area_density: bool,
 }
 
-/// Sums the scratch terms over every scratch within [`CUTOFF_SIGMAS`]·σ of `x0`.
-pub fn scratch_response<S: ScratchSet>(set: &S, q: &ResponseInputs) -> ScratchTerms {
-    let mut terms = ScratchTerms::empty(q.sigma);
-    let x0 = Vec2::from_array(q.x0);
-    let mut cursor = NearCursor::default();
-    while let Some(s) = set.next_near(&mut cursor, x0, CUTOFF_SIGMAS * q.sigma) {
-        if let Some(frame) = s.frame() {
-            terms.accumulate(&s, &frame, q, true);
-        }
-    }
-    terms
-}
-
-/// [`scratch_response`] for `N` queries at once (the SIMD backend's batch; CPU only).
+/// The scratch walk for `N` queries at once, one wavelength each (the SIMD backend's batch;
+/// CPU only).
 ///
 /// The gather strategy: one walk over the scratches near the circle that holds all `N`
 /// shading points (each lane's disk of radius [`CUTOFF_SIGMAS`]·σ inside it), and each
 /// candidate added in the lanes whose own disk reaches it, by the same distance test as the
 /// scalar walk. The lookup yields the candidates in its fixed order, a lane's own
 /// scratches among them in the order its scalar walk finds them, and a lane skips the
-/// others by adding exact zeros: every lane's sums are those of [`scratch_response`] up to
-/// the lane arithmetic. The batch is fastest when its points are close together (the
-/// caller sorts them); [`LaneUse`] counts how many lanes each candidate served.
+/// others by adding exact zeros: every lane's sums are those of
+/// [`scratch_response_spectral`] at the lane's wavelength up to the lane arithmetic. The
+/// batch is fastest when its points are close together (the caller sorts them); [`LaneUse`]
+/// counts how many lanes each candidate served.
 #[cfg(not(target_arch = "spirv"))]
 pub fn scratch_response_batch<S: ScratchSet, const N: usize>(
     set: &S,
@@ -251,9 +240,10 @@ pub struct SpectralInputs {
     pub area_density: bool,
 }
 
-/// [`scratch_response`] for several wavelengths in one walk over the scratches near `x0`:
-/// entry `j < count` equals `scratch_response` at wavelength `j` bit for bit (the same
-/// terms added in the same order); entries past `count` stay empty. ρc, when asked for, is
+/// Sums the scratch terms over every scratch within [`CUTOFF_SIGMAS`]·σ of `x0`, for up to
+/// [`MAX_SPECTRAL`] wavelengths in one walk: entry `j < count` holds wavelength `j`'s terms
+/// added in the walk's order, so it does not depend on the other wavelengths of the call
+/// (a one-wavelength call gives the same bits); entries past `count` stay empty. ρc, when asked for, is
 /// accumulated once and copied into every entry.
 pub fn scratch_response_spectral<S: ScratchSet>(
     set: &S,
