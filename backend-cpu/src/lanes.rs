@@ -1,13 +1,15 @@
 //! Batches of [`LANES`] queries through a kernel function generic over
 //! [`scratchwave_kernel::lane::Real`]: the SIMD backend's path for the formulas written in
-//! lanes (GHS today).
+//! lanes (GHS and the scratch-model table).
 //!
 //! One binary, run-time dispatch: each chunk of queries runs through the same
 //! `Lanes<8>` instantiation, inside an `#[target_feature(enable = "avx2,fma")]` function
 //! when the CPU has AVX2 and FMA (8 f32 per instruction), else in the baseline build (SSE2
 //! on x86-64, NEON on aarch64: the same eight lanes as two 4-wide halves). The lane
 //! functions are `#[inline(always)]` in the kernel, so their code is generated inside
-//! whichever context calls them. A short last chunk is padded with copies of its first
+//! whichever context calls them; a lane function too large to inline into the chunk loop
+//! brings its own out-of-line AVX2 instance ([`LaneFn::lanes_avx2`]: the scratch table).
+//! A short last chunk is padded with copies of its first
 //! query, so every query gets the same lane arithmetic wherever it sits in the input.
 
 use crate::parallel::{Backend, CHUNK};
@@ -26,6 +28,19 @@ pub trait LaneFn: Sync {
     fn lanes(&self, q: &[Self::In; LANES]) -> [Self::Out; LANES];
     /// The result of one query (the same formula at one lane: the scalar backend).
     fn one(&self, q: &Self::In) -> Self::Out;
+    /// [`LaneFn::lanes`] as the AVX2 + FMA path calls it. The default inlines `lanes` into
+    /// that path's chunk loop. A lane function too large for that instead gives `lanes` and
+    /// this an out-of-line instance each, this one compiled for AVX2 + FMA (the scratch
+    /// table: with its walk inlined into the chunk loop, LLVM's loop passes ran 39 CPU
+    /// minutes before they were stopped).
+    ///
+    /// # Safety
+    /// Call only where AVX2 and FMA were detected on the running CPU.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    unsafe fn lanes_avx2(&self, q: &[Self::In; LANES]) -> [Self::Out; LANES] {
+        self.lanes(q)
+    }
 }
 
 /// `out[i] = f(inputs[i])`: one query at a time on [`Backend::Scalar`], in batches of
@@ -84,23 +99,35 @@ fn run_chunk<F: LaneFn>(inputs: &[F::In], out: &mut [F::Out], f: &F) {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn run_chunk_avx2<F: LaneFn>(inputs: &[F::In], out: &mut [F::Out], f: &F) {
-    run_batches(inputs, out, f);
+    // SAFETY: this function runs only where AVX2 and FMA were detected (`run_chunk`).
+    run_batches_with(inputs, out, |q| unsafe { f.lanes_avx2(q) });
 }
 
 #[inline(always)]
 fn run_batches<F: LaneFn>(inputs: &[F::In], out: &mut [F::Out], f: &F) {
+    run_batches_with(inputs, out, |q| f.lanes(q));
+}
+
+/// Batches of [`LANES`] through `lanes`, the short last one padded with copies of its first
+/// query.
+#[inline(always)]
+fn run_batches_with<I: Copy, O: Copy>(
+    inputs: &[I],
+    out: &mut [O],
+    lanes: impl Fn(&[I; LANES]) -> [O; LANES],
+) {
     let mut qs = inputs.chunks_exact(LANES);
     let mut os = out.chunks_exact_mut(LANES);
     for (o, q) in (&mut os).zip(&mut qs) {
-        if let Ok(q) = <&[F::In; LANES]>::try_from(q) {
-            o.copy_from_slice(&f.lanes(q));
+        if let Ok(q) = <&[I; LANES]>::try_from(q) {
+            o.copy_from_slice(&lanes(q));
         }
     }
     let rest = qs.remainder();
     if let Some(first) = rest.first() {
         let mut q = [*first; LANES];
         q[..rest.len()].copy_from_slice(rest);
-        let r = f.lanes(&q);
+        let r = lanes(&q);
         os.into_remainder().copy_from_slice(&r[..rest.len()]);
     }
 }

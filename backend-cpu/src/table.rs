@@ -89,9 +89,11 @@ pub fn locality_order(queries: &[TableQuery], cell: f32) -> Vec<usize> {
         let cell = |v: f32| ((v * inv).floor() as i32 as i64 + (1 << 31)) as u32;
         spread_bits(cell(x)) | (spread_bits(cell(y)) << 1)
     };
-    let mut order: Vec<usize> = (0..queries.len()).collect();
-    order.sort_by_key(|&i| key(&queries[i]));
-    order
+    // Each key computed once; the index breaks ties, so the unstable sort keeps the input
+    // order among equal keys.
+    let mut keyed: Vec<(u64, usize)> = queries.iter().map(key).zip(0..).collect();
+    keyed.sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
 }
 
 /// The 32 bits of `v` at the even bit positions of a u64 (one half of a Morton code).
@@ -133,8 +135,25 @@ impl<'a> ScratchTable<'a> {
 impl LaneFn for ScratchTable<'_> {
     type In = TableQuery;
     type Out = f32;
-    #[inline(always)]
+    #[inline(never)]
     fn lanes(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
+        self.batch(q)
+    }
+    fn one(&self, q: &TableQuery) -> f32 {
+        evaluate(self.params, q, &self.set)
+    }
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    unsafe fn lanes_avx2(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
+        // SAFETY: the caller detected AVX2 and FMA (the trait's contract).
+        unsafe { batch_avx2(self, q) }
+    }
+}
+
+impl ScratchTable<'_> {
+    /// [`evaluate_batch`], counting lane use.
+    #[inline(always)]
+    fn batch(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
         let mut u = LaneUse::default();
         let v = evaluate_batch(self.params, q, &self.set, &mut u);
         let [b, c, l] = &self.use_counts;
@@ -143,9 +162,14 @@ impl LaneFn for ScratchTable<'_> {
         l.fetch_add(u.lanes, Ordering::Relaxed);
         v
     }
-    fn one(&self, q: &TableQuery) -> f32 {
-        evaluate(self.params, q, &self.set)
-    }
+}
+
+/// [`ScratchTable::batch`] compiled for AVX2 + FMA, out of line ([`LaneFn::lanes_avx2`]).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[inline(never)]
+fn batch_avx2(t: &ScratchTable, q: &[TableQuery; LANES]) -> [f32; LANES] {
+    t.batch(q)
 }
 
 /// Evaluates footprint queries `(scratch, ellipse)`.

@@ -225,7 +225,8 @@ impl<const N: usize> Real for Lanes<N> {
     }
     #[inline(always)]
     fn trunc(self) -> Self {
-        self.map(|x| (x as i32) as f32)
+        // `(x as i32) as f32` per lane would scalarise the loop (a saturating conversion).
+        self.map(portable::trunc_branchless)
     }
     #[inline(always)]
     fn sqrt(self) -> Self {

@@ -66,6 +66,21 @@ pub fn ln(x: f32) -> f32 {
 }
 
 /// Square root; `sqrt(x)` for `x < 0` is NaN, so callers clamp first (see [`sqrt0`]).
+///
+/// On x86-64 the `sqrtss` intrinsic rather than libm's `sqrtf`: the same correctly rounded
+/// instruction, but libm issues it as inline assembly in the legacy SSE encoding, which
+/// inside the SIMD backend's AVX2 code (dirty upper halves of the `ymm` registers) pays the
+/// SSE/AVX transition penalty on every call; the intrinsic takes the encoding of its caller.
+#[cfg(target_arch = "x86_64")]
+#[inline]
+pub fn sqrt(x: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_set_ss, _mm_sqrt_ss};
+    // SAFETY: `sqrtss` needs SSE, which every x86-64 CPU has (the target's baseline).
+    unsafe { _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))) }
+}
+
+/// Square root; `sqrt(x)` for `x < 0` is NaN, so callers clamp first (see [`sqrt0`]).
+#[cfg(not(target_arch = "x86_64"))]
 #[inline]
 pub fn sqrt(x: f32) -> f32 {
     libm::sqrtf(x)

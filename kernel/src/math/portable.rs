@@ -89,15 +89,42 @@ fn exp_reduced(x: f32, kf: f32) -> f32 {
 const ROUND_MAGIC: f32 = 8_388_608.0;
 
 /// `floor(x)` without a branch or a float→int conversion (either keeps LLVM from
-/// vectorising a loop of it): exact for every `f32` (|x| ≥ 2²³ is already integral).
+/// vectorising a loop of it): exact for every `f32` (|x| ≥ 2²³ is already integral), and
+/// `floor(−0) = −0` as libm's.
 #[inline(always)]
 pub fn floor_branchless(x: f32) -> f32 {
     let ax = f32::from_bits(x.to_bits() & 0x7fff_ffff);
     let n = (ax + ROUND_MAGIC) - ROUND_MAGIC;
-    let n = if x < 0.0 { -n } else { n };
+    // x's sign on the rounded |x| (a sign test would turn −0 into +0).
+    let n = f32::from_bits(n.to_bits() | (x.to_bits() & 0x8000_0000));
     let f = if n > x { n - 1.0 } else { n };
     if ax < ROUND_MAGIC { f } else { x }
 }
+
+/// `(x as i32) as f32` (truncation toward zero, saturating at ±2³¹, NaN to +0, and +0 for
+/// every `x` in (−1, 1)), bit for bit, written without branches or float→int conversions,
+/// for [`crate::lane::Lanes`]: a saturating `as i32` scalarises a loop over lanes.
+#[inline(always)]
+pub fn trunc_branchless(x: f32) -> f32 {
+    let ax = f32::from_bits(x.to_bits() & 0x7fff_ffff);
+    // Below 2²³ the magic sum rounds |x| to an integer; one less where it rounded up.
+    let n = (ax + ROUND_MAGIC) - ROUND_MAGIC;
+    let t = if n > ax { n - 1.0 } else { n };
+    // From 2²³ on every f32 is an integer; from 2³¹ on the conversion saturates.
+    let t = if ax < ROUND_MAGIC {
+        t
+    } else if ax < I32_LIMIT {
+        ax
+    } else {
+        I32_LIMIT
+    };
+    // `0 − t`, not `−t`: a negative x above −1 truncates to +0, as the conversion does.
+    let t = if x < 0.0 { 0.0 - t } else { t };
+    if x.is_nan() { 0.0 } else { t }
+}
+
+/// 2³¹, where `as i32` saturates (`i32::MAX as f32` rounds to it).
+const I32_LIMIT: f32 = 2_147_483_648.0;
 
 /// 1.5·2²³: `n + K_MAGIC` holds the integer `|n| < 2²²` in its low mantissa bits.
 const K_MAGIC: f32 = 12_582_912.0;

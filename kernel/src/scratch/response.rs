@@ -119,6 +119,7 @@ pub struct ResponseInputs<R = f32> {
 /// batch is fastest when its points are close together (the caller sorts them); [`LaneUse`]
 /// counts how many lanes each candidate served.
 #[cfg(not(target_arch = "spirv"))]
+#[inline(always)]
 pub fn scratch_response_batch<S: ScratchSet, const N: usize>(
     set: &S,
     q: &ResponseInputs<Lanes<N>>,

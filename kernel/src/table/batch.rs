@@ -18,6 +18,12 @@ use glam::{Vec2, Vec3};
 /// per-query set-up (directions, ξ, reflectance) one query at a time as in [`evaluate`]. A
 /// query whose shading point is not finite is evaluated on its own by [`evaluate`] (it has
 /// no place in the batch's lookup circle).
+///
+/// `#[inline(always)]`, as every lane function, so that the walk and the model compile to
+/// the instruction set of the caller (the SIMD backend's AVX2 + FMA dispatch); the scalar
+/// set-up and the lone queries are kept out of line (`prepare`, `finish`), so that the
+/// inlined code stays the lanes' arithmetic.
+#[inline(always)]
 pub fn evaluate_batch<S: ScratchSet, const N: usize>(
     params: &TableParams,
     qs: &[TableQuery; N],
@@ -26,14 +32,13 @@ pub fn evaluate_batch<S: ScratchSet, const N: usize>(
 ) -> [f32; N] {
     // The table's model and options (each query brings its own F).
     let m = &BsdfMaterial::from_table(params, qs[0].material);
-    let prepared = qs.each_ref().map(|q| Prepared::of(m, q));
-    let in_lanes = |p: &Prepared| p.x0.is_finite();
-    let Some(first) = prepared.iter().flatten().copied().find(in_lanes) else {
-        return qs.each_ref().map(|q| evaluate(params, q, set));
+    let prepared = prepare(m, qs);
+    let Some(first) = prepared.iter().flatten().copied().find(Prepared::in_lanes) else {
+        return finish(params, qs, set, &prepared, [0.0; N]);
     };
     // Lanes without a query for the walk compute the first one's value (and report their
     // own).
-    let p = prepared.map(|p| p.filter(in_lanes).unwrap_or(first));
+    let p = prepared.map(|p| p.filter(Prepared::in_lanes).unwrap_or(first));
     let lanes = |f: fn(&Prepared) -> f32| Lanes(p.each_ref().map(f));
     let xi = [lanes(|p| p.xi.x), lanes(|p| p.xi.y)];
     let inputs = ResponseInputs {
@@ -54,9 +59,28 @@ pub fn evaluate_batch<S: ScratchSet, const N: usize>(
         lanes(|p| p.f),
         lanes(|p| p.lambda),
     );
+    finish(params, qs, set, &prepared, v.0)
+}
+
+/// Every query's set-up ([`Prepared::of`]), out of line.
+#[inline(never)]
+fn prepare<const N: usize>(m: &BsdfMaterial, qs: &[TableQuery; N]) -> [Option<Prepared>; N] {
+    qs.each_ref().map(|q| Prepared::of(m, q))
+}
+
+/// The batch's results: the lanes' values `v` for the queries in the lanes, 0 for a query
+/// without a value, and [`evaluate`] for a query outside the lanes (out of line).
+#[inline(never)]
+fn finish<S: ScratchSet, const N: usize>(
+    params: &TableParams,
+    qs: &[TableQuery; N],
+    set: &S,
+    prepared: &[Option<Prepared>; N],
+    v: [f32; N],
+) -> [f32; N] {
     core::array::from_fn(|i| match prepared[i] {
         None => 0.0,
-        Some(p) if in_lanes(&p) => v.0[i],
+        Some(p) if p.in_lanes() => v[i],
         Some(_) => evaluate(params, &qs[i], set),
     })
 }
@@ -78,6 +102,12 @@ struct Prepared {
 }
 
 impl Prepared {
+    /// Whether the query can share the batch's walk (its shading point is finite).
+    #[inline]
+    fn in_lanes(&self) -> bool {
+        self.x0.is_finite()
+    }
+
     /// The set-up, or `None` for a query whose value is 0 (below the horizon, degenerate
     /// direction, σ or λ not positive).
     #[inline]

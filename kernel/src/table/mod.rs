@@ -26,7 +26,7 @@ pub use batch::evaluate_batch;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec2, Vec3};
 
-/// One table query. GPU-visible: 64 bytes.
+/// One table query. GPU-visible: 80 bytes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct TableQuery {
