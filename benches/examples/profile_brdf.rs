@@ -1,6 +1,7 @@
 //! Runs the BRDF workload of `benches/brdf.rs` in a loop for profilers
 //! (`perf record`, `valgrind --tool=callgrind`):
-//! `cargo run --release -p scratchwave-benches --example profile_brdf -- [werner|velinov] [scratches] [repeats]`.
+//! `cargo run --release -p scratchwave-benches --example profile_brdf -- [werner|velinov] [scratches] [repeats] [scalar|simd]`
+//! (`simd`: the SIMD backend on one thread).
 
 use scratchwave_benches::{queries_near_specular, scratches_in_window};
 use scratchwave_cpu::{Backend, evaluate_table};
@@ -15,6 +16,11 @@ fn main() {
     };
     let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(10);
     let repeats: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(20);
+    let backend = if args.get(3).map(String::as_str) == Some("simd") {
+        Backend::SimdSingleThread
+    } else {
+        Backend::Scalar
+    };
     let scratches = scratches_in_window(n, 10.0, n as u64);
     let queries = queries_near_specular(4096, 7);
     let params = TableParams {
@@ -25,14 +31,14 @@ fn main() {
     let t = std::time::Instant::now();
     let mut sum = 0.0f64;
     for _ in 0..repeats {
-        sum += evaluate_table(Backend::Scalar, &params, &scratches, &queries)
+        sum += evaluate_table(backend, &params, &scratches, &queries)
             .iter()
             .map(|v| f64::from(*v))
             .sum::<f64>();
     }
     let dt = t.elapsed().as_secs_f64();
     println!(
-        "{model:?} n={n}: {:.0} evals/s (checksum {sum:.6e})",
+        "{model:?} n={n} {backend:?}: {:.0} evals/s (checksum {sum:.6e})",
         (repeats * queries.len()) as f64 / dt
     );
 }
