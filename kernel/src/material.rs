@@ -98,7 +98,7 @@ impl Material {
         let cos = match FresnelAngle::from_u32(self.fresnel_angle) {
             FresnelAngle::ThetaI => wi.z,
             FresnelAngle::Normal => 1.0,
-            FresnelAngle::ThetaD => wi.dot((wi + wo).normalize_or_zero()),
+            FresnelAngle::ThetaD => cos_theta_d(wi, wo),
         };
         let (n, k) = conductor::ior(
             Conductor::from_u32(self.conductor),
@@ -115,6 +115,17 @@ impl Material {
         MaterialKind::from_u32(self.kind) == MaterialKind::Ior
             && Conductor::from_u32(self.conductor) != Conductor::None
     }
+}
+
+/// `cosθd = wi·h` with `h = (wi + wo)/|wi + wo|`, formed as `|wi + wo|/2` (equal for unit
+/// directions: `wi·(wi + wo) = 1 + wi·wo = |wi + wo|²/2`). Symmetric in `wi`, `wo` bit for
+/// bit (`wi + wo` is a commutative sum), so Fresnel at θd keeps the BRDF reciprocal bit for
+/// bit; `wi·normalize(wi + wo)` differs from `wo·normalize(wi + wo)` in the last bits, which
+/// Fresnel below the critical angle of `n < 1` amplifies (its slope is infinite there).
+/// 0 when `wo = −wi`.
+#[inline]
+pub fn cos_theta_d(wi: Vec3, wo: Vec3) -> f32 {
+    0.5 * crate::math::sqrt((wi + wo).length_squared())
 }
 
 /// [`Material::reflectance`] at fixed directions for several wavelengths: formed once, at

@@ -10,10 +10,12 @@
 //!   tail, where every term is below the grid, the sum is an ordinary f32 sum (minimal
 //!   counterexample found by this test: σ = 28.765049 µm, three scratches, 3.1328570e-19 vs
 //!   3.1328576e-19 after swapping two of them);
-//! * reciprocity `f(wi, wo) = f(wo, wi)`: bit for bit with a constant F or Fresnel at normal
-//!   incidence (ξ ∝ (wi + wo)_xy and γ = wi.z + wo.z are commutative sums), to f32 rounding
-//!   with Fresnel at θd (`wi·h` and `wo·h` are equal only in exact arithmetic); Fresnel at
-//!   θi is not reciprocal and is not checked;
+//! * reciprocity `f(wi, wo) = f(wo, wi)`: bit for bit with a constant F, Fresnel at normal
+//!   incidence and Fresnel at θd (ξ ∝ (wi + wo)_xy, γ = wi.z + wo.z and `cosθd = |wi + wo|/2`
+//!   are commutative sums). Fresnel at θd was once `wi·normalize(wi + wo)`, reciprocal only
+//!   to f32 rounding, which Fresnel near the critical angle of `n < 1` amplified past any
+//!   fixed tolerance (counterexample found by this test: n = 0.68, k = 0, λ = 380 nm,
+//!   4.301313e-11 vs 4.3013235e-11). Fresnel at θi is not reciprocal and is not checked;
 //! * scale invariance: the BRDF is dimensionless in the lengths, so scaling σ, λ, the
 //!   shading point and every scratch length (centre, half length, width, depth) by a power
 //!   of two leaves it unchanged bit for bit (each operation then scales exactly), except
@@ -147,8 +149,7 @@ proptest! {
         prop_assert!(v.is_finite() && v >= 0.0, "{g:?}: {v}");
     }
 
-    /// Reciprocity: bitwise with constant F or Fresnel at normal incidence; with Fresnel at
-    /// θd to a relative 2e-6 (the two f32 roundings of `cosθd`).
+    /// Reciprocity, bit for bit: constant F, Fresnel at normal incidence and at θd.
     #[test]
     fn scratch_models_are_reciprocal(
         sigma in 2.0f32..50.0,
@@ -163,18 +164,14 @@ proptest! {
         let set = ScratchSlice { scratches: &scratches };
         let p = params(model, depth_term, eta, base, sigma);
         let xy = [x.0 * sigma, x.1 * sigma];
-        for (m, exact) in [
-            (Material::constant(f), true),
-            (Material::ior(n, k, FresnelAngle::Normal), true),
-            (Material::ior(n, k, FresnelAngle::ThetaD), false),
+        for m in [
+            Material::constant(f),
+            Material::ior(n, k, FresnelAngle::Normal),
+            Material::ior(n, k, FresnelAngle::ThetaD),
         ] {
             let a = evaluate(&p, &query(wi, wo, lambda_nm, xy, m), &set);
             let b = evaluate(&p, &query(wo, wi, lambda_nm, xy, m), &set);
-            if exact {
-                prop_assert_eq!(a.to_bits(), b.to_bits(), "{:?}: {} vs {}", m, a, b);
-            } else {
-                prop_assert!((a - b).abs() <= 2e-6 * a.max(b), "{m:?}: {a} vs {b}");
-            }
+            prop_assert_eq!(a.to_bits(), b.to_bits(), "{:?}: {} vs {}", m, a, b);
         }
     }
 

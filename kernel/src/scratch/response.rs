@@ -133,9 +133,10 @@ pub fn scratch_response_batch<S: ScratchSet, const N: usize>(
     });
     let centre = 0.5 * (lo + hi);
     // Every lane's disk inside the union's (with a margin for the rounding of the centre).
-    let spread = points
-        .iter()
-        .fold(0.0_f32, |m, p| m.max(p.distance(centre)));
+    // `math::sqrt`, not glam's `distance` (libm's legacy-SSE `sqrtf` inside AVX2 code).
+    let spread = points.iter().fold(0.0_f32, |m, p| {
+        m.max(math::sqrt((*p - centre).length_squared()))
+    });
     let union = radius + spread * (1.0 + 1.0e-5) + 1.0e-6 * radius;
     let mut cursor = NearCursor::default();
     while let Some(s) = set.next_near(&mut cursor, centre, union) {
