@@ -2,7 +2,7 @@
 //! f64 computation written here (never against the kernel's own output).
 
 use scratchwave_kernel::material::{FresnelAngle, Material};
-use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice, scratch_area_density};
+use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice, Window, scratch_area_density};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 use std::f64::consts::PI;
 
@@ -113,6 +113,7 @@ fn fully_scratched_window_has_unit_area_density() {
         &ScratchSlice { scratches: &s },
         glam::Vec2::new(0.3, 0.1),
         10.0,
+        Window::Frozen,
     );
     assert!((rho - 1.0).abs() < 1e-4, "ρc = {rho}");
 }

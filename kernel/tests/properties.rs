@@ -1,4 +1,6 @@
-//! Property tests (proptest) of the table models over random valid inputs:
+//! Property tests (proptest) of the table models over random valid inputs, with the
+//! coherence window across the grooves frozen (Werner) or exact (`options.window`) in the
+//! first, reciprocity and scale-invariance properties:
 //!
 //! * every model's value is finite, non-negative and below the a-priori bound of
 //!   `stability.rs`, `F/(πσ²λ²) (2πσ² + Σ 2W√(2π)σ)²`; the GHS BRDF is finite and ≥ 0;
@@ -96,6 +98,11 @@ fn params(model: u32, depth_term: u32, eta: u32, base: u32, sigma: f32) -> Table
     }
 }
 
+/// `p` with the coherence window across the grooves frozen (0) or exact (1).
+fn windowed(p: TableParams, window: u32) -> TableParams {
+    TableParams { window, ..p }
+}
+
 fn query(wi: [f32; 3], wo: [f32; 3], lambda_nm: f32, x: [f32; 2], m: Material) -> TableQuery {
     TableQuery {
         wi,
@@ -116,6 +123,7 @@ proptest! {
         sigma in prop_oneof![0.5f32..5.0, 5.0f32..200.0],
         raw in prop::collection::vec(scratch(), 0..8),
         model in 0u32..3, depth_term in 0u32..2, eta in 0u32..2, base in 0u32..2,
+        window in 0u32..2,
         wi in upper(), wo in upper(),
         lambda_nm in 380.0f32..780.0,
         x in (-3.0f32..3.0, -3.0f32..3.0),
@@ -123,7 +131,7 @@ proptest! {
     ) {
         let scratches = scaled(&raw, sigma);
         let set = ScratchSlice { scratches: &scratches };
-        let p = params(model, depth_term, eta, base, sigma);
+        let p = windowed(params(model, depth_term, eta, base, sigma), window);
         let q = query(wi, wo, lambda_nm, [x.0 * sigma, x.1 * sigma], m);
         let v = evaluate(&p, &q, &set);
         let (s, lam) = (f64::from(sigma), f64::from(lambda_nm) * 1e-3);
@@ -155,6 +163,7 @@ proptest! {
         sigma in 2.0f32..50.0,
         raw in prop::collection::vec(scratch(), 0..6),
         model in 0u32..3, depth_term in 0u32..2, eta in 0u32..2, base in 0u32..2,
+        window in 0u32..2,
         wi in upper(), wo in upper(),
         lambda_nm in 380.0f32..780.0,
         x in (-2.0f32..2.0, -2.0f32..2.0),
@@ -162,7 +171,7 @@ proptest! {
     ) {
         let scratches = scaled(&raw, sigma);
         let set = ScratchSlice { scratches: &scratches };
-        let p = params(model, depth_term, eta, base, sigma);
+        let p = windowed(params(model, depth_term, eta, base, sigma), window);
         let xy = [x.0 * sigma, x.1 * sigma];
         for m in [
             Material::constant(f),
@@ -212,6 +221,7 @@ proptest! {
         lambda_nm in 380.0f32..780.0,
         x in (-2.0f32..2.0, -2.0f32..2.0),
         k in -4i32..=4,
+        window in 0u32..2,
     ) {
         let s = 2.0f32.powi(k);
         let scratches = scaled(&raw, sigma);
@@ -228,12 +238,12 @@ proptest! {
         let m = Material::constant(0.8);
         let xy = [x.0 * sigma, x.1 * sigma];
         let a = evaluate(
-            &params(model, depth_term, eta, base, sigma),
+            &windowed(params(model, depth_term, eta, base, sigma), window),
             &query(wi, wo, lambda_nm, xy, m),
             &ScratchSlice { scratches: &scratches },
         );
         let b = evaluate(
-            &params(model, depth_term, eta, base, sigma * s),
+            &windowed(params(model, depth_term, eta, base, sigma * s), window),
             &query(wi, wo, lambda_nm * s, [xy[0] * s, xy[1] * s], m),
             &ScratchSlice { scratches: &scaled_scratches },
         );

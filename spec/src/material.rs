@@ -8,8 +8,8 @@ use crate::spec;
 use scratchwave_kernel::lights::LightMethod;
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::render::shading::{BaseKind, SceneModel, ShadeMaterial};
-use scratchwave_kernel::scratch::DepthTerm;
 use scratchwave_kernel::scratch::Scratch;
+use scratchwave_kernel::scratch::{DepthTerm, Window};
 use scratchwave_kernel::table::{Model, TableParams};
 use serde_json::Value;
 use std::path::Path;
@@ -146,7 +146,18 @@ pub fn scene_material(
         ..TableParams::default()
     };
     if let Some(o) = m.get("options") {
-        spec::options(o, &m.path_of("options"), tm, &mut shade.table)?;
+        let path = m.path_of("options");
+        spec::options(o, &path, tm, &mut shade.table)?;
+        // The incoherent model's closed forms (pixel footprint, area lights) integrate the
+        // frozen window; a scene would use them silently.
+        if shade.table.window == Window::Exact as u32
+            && matches!(sm, SceneModel::Velinov | SceneModel::Auto)
+        {
+            return Err(SpecError::field(
+                format!("{path}.window"),
+                "\"exact\" is for the coherent models in scenes (\"werner\",                  \"werner_blended\"): the incoherent model's footprint and area-light closed                  forms take the frozen window (a table spec may use it with \"velinov\")",
+            ));
+        }
     }
     if let Some(s) = m.get("scratches") {
         scratches = crate::scratches::scratch_sources_with_limit(

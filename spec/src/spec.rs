@@ -185,15 +185,17 @@ pub fn table_stream(v: &Value) -> Result<TableStream, SpecError> {
     })
 }
 
-/// Model options `{"eta", "depth_term", "base"}` at `path` into `params` (`eta` and `base`
-/// only for model `velinov`); an option left out keeps the value `params` has.
+/// Model options `{"eta", "depth_term", "base", "window"}` at `path` into `params` (`eta`
+/// and `base` only for model `velinov`); an option left out keeps the value `params` has.
+/// `window`: `"frozen"` (Werner's coherence window at each groove's centre line, the
+/// default) or `"exact"` (integrated across the groove; `kernel::scratch::window`).
 pub fn options(
     v: &Value,
     path: &str,
     model: Model,
     params: &mut TableParams,
 ) -> Result<(), SpecError> {
-    let o = Obj::new(v, path, &["eta", "depth_term", "base"])?;
+    let o = Obj::new(v, path, &["eta", "depth_term", "base", "window"])?;
     let velinov_only = |key: &str| -> Result<(), SpecError> {
         if o.get(key).is_some() && model != Model::Velinov {
             return Err(SpecError::field(
@@ -214,6 +216,9 @@ pub fn options(
     }
     if let Some(c) = o.opt_choice("base", &["none", "gaussian"])? {
         params.base_gaussian = u32::from(c == "gaussian");
+    }
+    if let Some(c) = o.opt_choice("window", &["frozen", "exact"])? {
+        params.window = u32::from(c == "exact");
     }
     Ok(())
 }

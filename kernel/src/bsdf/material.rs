@@ -11,7 +11,7 @@ use super::scratch_models::Model;
 use crate::ghs::GhsParams;
 use crate::material::Material;
 use crate::render::shading::{BaseKind, SceneModel, ShadeMaterial};
-use crate::scratch::{DepthTerm, EtaMode};
+use crate::scratch::{DepthTerm, EtaMode, Window};
 use crate::table::TableParams;
 use bytemuck::{Pod, Zeroable};
 
@@ -56,8 +56,10 @@ pub struct BsdfMaterial {
     pub base_gaussian: u32,
     /// Coherence σ (µm).
     pub sigma_um: f32,
+    /// A [`Window`] as `u32`: the coherence window across a groove (every scratch model).
+    pub window: u32,
     /// Explicit padding.
-    pub pad: [u32; 2],
+    pub pad: [u32; 1],
     /// The scratch models' reflectance F.
     pub material: Material,
     /// GHS parameters: the material of model `Ghs`, or the base of [`BaseKind::Ghs`].
@@ -102,7 +104,8 @@ impl BsdfMaterial {
             depth: DepthChoice::ModelDefault as u32,
             base_gaussian: 0,
             sigma_um,
-            pad: [0; 2],
+            window: Window::Frozen as u32,
+            pad: [0; 1],
             material,
             ghs: GhsParams::new(0.0, 0.1, 1.0, 1.0, 2.0, 1.5, 0.0),
         }
@@ -128,7 +131,8 @@ impl BsdfMaterial {
             depth: depth as u32,
             base_gaussian: m.table.base_gaussian,
             sigma_um: m.table.sigma_um,
-            pad: [0; 2],
+            window: m.table.window,
+            pad: [0; 1],
             material: m.material,
             ghs: m.ghs,
         }
@@ -149,6 +153,7 @@ impl BsdfMaterial {
         m.eta = params.eta;
         m.depth = depth as u32;
         m.base_gaussian = params.base_gaussian;
+        m.window = params.window;
         m
     }
 
@@ -194,6 +199,12 @@ impl BsdfMaterial {
         }
     }
 
+    /// The coherence window across a groove.
+    #[inline]
+    pub fn window(&self) -> Window {
+        Window::from_u32(self.window)
+    }
+
     /// Whether the `(1 − ρc)` GHS base applies (WernerBlended and Velinov with
     /// [`BaseKind::Ghs`], as in the renderer).
     #[inline]
@@ -229,7 +240,8 @@ impl BsdfMaterial {
             depth_term: self.depth_term() as u32,
             base_gaussian: self.base_gaussian,
             sigma_um: self.sigma_um,
-            pad: [0; 3],
+            window: self.window,
+            pad: [0; 2],
         }
     }
 }

@@ -2,7 +2,7 @@
 //! writes with `num_complex::Complex32` and that the SIMD backend also runs in lanes.
 
 use super::Real;
-use core::ops::{Add, Mul, Sub};
+use core::ops::{Add, Mul, Neg, Sub};
 
 /// `re + i·im`, each a [`Real`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -61,6 +61,12 @@ impl<R: Real> Cx<R> {
     pub fn mul_i(self) -> Self {
         Cx::new(-self.im, self.re)
     }
+
+    /// The complex conjugate.
+    #[inline(always)]
+    pub fn conj(self) -> Self {
+        Cx::new(self.re, -self.im)
+    }
 }
 
 impl<R: Real> Add for Cx<R> {
@@ -68,6 +74,14 @@ impl<R: Real> Add for Cx<R> {
     #[inline(always)]
     fn add(self, o: Self) -> Self {
         Cx::new(self.re + o.re, self.im + o.im)
+    }
+}
+
+impl<R: Real> Neg for Cx<R> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Cx::new(-self.re, -self.im)
     }
 }
 

@@ -70,22 +70,42 @@ pub fn gauss_fourier_centered(mid: f32, half: f32, sigma: f32, nu: f32) -> C32 {
 /// [`gauss_fourier_centered`] for any [`Real`] (the one formula).
 #[inline(always)]
 pub fn gauss_fourier_centered_lanes<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
+    centered::<R, false>(mid, half, sigma, nu)
+}
+
+/// [`gauss_fourier_centered`] without the phase of the interval's centre:
+/// `∫_{−h}^{h} exp(−(m + t)²/(2σ²) − 2πiνt) dt = e^{2πiνm} I(m − h, m + h)`.
+///
+/// For a caller that combines that phase with others analytically (the exact across-groove
+/// window, [`crate::scratch::window`]): where `|m| ≫ h` the phase `2νm` is large, and
+/// rounding it separately from the caller's own large phases would cost their cancellation.
+/// The centre's phase is factored out inside anyway (module docs), so this costs nothing
+/// more there; across the window's centre (`|m| ≤ h`) it is put back by one `cis`.
+#[inline(always)]
+pub fn gauss_fourier_reduced_lanes<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
+    centered::<R, true>(mid, half, sigma, nu)
+}
+
+/// [`gauss_fourier_centered_lanes`], or with `REDUCED` its form without the centre's phase.
+#[inline(always)]
+fn centered<R: Real, const REDUCED: bool>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
     let c = R::splat;
     let len = c(2.0) * half;
     branch!(
         half.gt(c(0.0)) & sigma.gt(c(0.0)),
         branch!(
             len.le(c(0.5) * sigma) & (nu.abs() * len).le(c(0.5)),
-            gauss_legendre(mid, half, sigma, nu),
-            faddeeva_form(mid, half, sigma, nu)
+            gauss_legendre::<R, REDUCED>(mid, half, sigma, nu),
+            faddeeva_form::<R, REDUCED>(mid, half, sigma, nu)
         ),
         Cx::splat(0.0, 0.0)
     )
 }
 
-/// The closed form through the Faddeeva function at the two ends (the module docs).
+/// The closed form through the Faddeeva function at the two ends (the module docs);
+/// with `REDUCED`, without the centre's phase `e^{−2πiνm}`.
 #[inline(always)]
-fn faddeeva_form<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
+fn faddeeva_form<R: Real, const REDUCED: bool>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
     let c = R::splat;
     let (a, b) = (mid - half, mid + half);
     let k = c(1.0) / (c(super::SQRT_2) * sigma);
@@ -115,7 +135,11 @@ fn faddeeva_form<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
                 cis_pi_lanes(c(2.0) * nu * half),
                 cis_pi_lanes(c(-2.0) * nu * half),
             ),
-            cis_pi_lanes(c(-2.0) * nu * mid),
+            if REDUCED {
+                Cx::splat(1.0, 0.0)
+            } else {
+                cis_pi_lanes(c(-2.0) * nu * mid)
+            },
         ),
         (
             (
@@ -131,7 +155,12 @@ fn faddeeva_form<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
         same_side,
         // Same side: the e^{−y²} parts cancel exactly; take them out analytically.
         (common * (ea - eb)).scale(super::sign(xa)),
-        Cx::real(centre) - ea - eb
+        if REDUCED {
+            // Across the centre `|m| ≤ h`: the phase is small and put back directly.
+            cis_pi_lanes(c(2.0) * nu * mid) * (Cx::real(centre) - ea - eb)
+        } else {
+            Cx::real(centre) - ea - eb
+        }
     );
     diff.scale(sigma * c(SQRT_PI_OVER_2))
 }
@@ -184,9 +213,9 @@ const SQRT_PI_OVER_2: f32 = 1.253_314_137_315_500_3;
 
 /// Direct 8-point Gauss–Legendre quadrature of the integrand over `[m − h, m + h]` (short
 /// intervals only). The phase at the centre, `e^{−2πiνm}`, is factored out, so the nodes
-/// carry only the small phases `2πν·(±d)` of their offsets.
+/// carry only the small phases `2πν·(±d)` of their offsets (with `REDUCED`, left out).
 #[inline(always)]
-fn gauss_legendre<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
+fn gauss_legendre<R: Real, const REDUCED: bool>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
     let c = R::splat;
     let inv2s2 = c(0.5) / (sigma * sigma);
     let mut acc = Cx::splat(0.0, 0.0);
@@ -202,7 +231,11 @@ fn gauss_legendre<R: Real>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
         }
         i += 1;
     }
-    (cis_pi_lanes(c(-2.0) * nu * mid) * acc).scale(half)
+    if REDUCED {
+        acc.scale(half)
+    } else {
+        (cis_pi_lanes(c(-2.0) * nu * mid) * acc).scale(half)
+    }
 }
 
 /// `∫_a^b exp(−u²/(2σ²)) du` (real), e.g. a segment's Gaussian-weighted length.

@@ -23,7 +23,7 @@ pub use faddeeva::{faddeeva, faddeeva_lanes, faddeeva_pair};
 pub use gamma::{gamma, gamma_inv, gamma_p, gamma_p_inv, gamma_q, gamma_q_inv, lgamma};
 pub use gauss_interval::{
     erf, gauss_fourier_centered, gauss_fourier_centered_lanes, gauss_fourier_interval,
-    gauss_interval, gauss_interval_centered,
+    gauss_fourier_reduced_lanes, gauss_interval, gauss_interval_centered,
 };
 pub use si::{si, si_split, si_velinov, si_velinov_split};
 pub use trig_pi::{

@@ -26,7 +26,7 @@ use crate::lights::{
 };
 use crate::material::Material;
 use crate::math;
-use crate::scratch::{ScratchSet, scratch_area_density};
+use crate::scratch::{ScratchSet, Window, scratch_area_density};
 use crate::table::TableParams;
 use crate::units::direction;
 use bytemuck::{Pod, Zeroable};
@@ -92,7 +92,10 @@ const _: () = assert!(core::mem::size_of::<ShadeMaterial>() == 128);
 /// `1 − ρc` at `x` (≥ 0), the base weight.
 #[inline]
 pub fn base_weight<S: ScratchSet>(m: &ShadeMaterial, x: Vec2, set: &S) -> f32 {
-    math::max(1.0 - scratch_area_density(set, x, m.table.sigma_um), 0.0)
+    math::max(
+        1.0 - scratch_area_density(set, x, m.table.sigma_um, Window::from_u32(m.table.window)),
+        0.0,
+    )
 }
 
 /// The material's BRDF (1/sr, no cosine) for shading-frame `wi`, `wo` at scratch-space

@@ -8,6 +8,7 @@
 //! | `spatial_phase` | η, finite (App. A) and infinite (Velinov Eq. 8) |
 //! | `set` | "every scratch near x0": brute force or the flattened BVH |
 //! | `response` | base response B (Eq. 16), scratch response S (Eq. 17), ρc |
+//! | `window` | the coherence window across a groove: frozen (Werner) or exact (#21) |
 //! | `coherent_sum` | `S = Σ S_k` summed exactly on a grid, so `B − S` survives cancellation |
 
 pub mod coherent_sum;
@@ -17,6 +18,7 @@ pub mod record;
 pub mod response;
 pub mod set;
 pub mod spatial_phase;
+pub mod window;
 
 pub use coherent_sum::CoherentSum;
 pub use grid::{GridHeader, ScratchGrid};
@@ -30,3 +32,4 @@ pub use response::{
 };
 pub use set::{NearCursor, ScratchBvh, ScratchSet, ScratchSlice};
 pub use spatial_phase::{EtaMode, eta_finite, eta_infinite};
+pub use window::Window;

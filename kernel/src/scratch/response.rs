@@ -5,7 +5,8 @@ use super::coherent_sum::CoherentSum;
 use super::profile::{Profile, mask_minus_profile_lanes};
 use super::record::{Scratch, SegmentFrame};
 use super::set::{NearCursor, ScratchSet};
-use super::spatial_phase::{EtaMode, eta_lanes, xi_local_lanes};
+use super::spatial_phase::{EtaMode, frozen_across_lanes, infinite_along_lanes, xi_local_lanes};
+use super::window::{AcrossIntervals, Window, exact_across_intervals};
 use crate::lane::{Blend, Cx, Real};
 #[cfg(not(target_arch = "spirv"))]
 use crate::lane::{LaneMask, Lanes};
@@ -77,12 +78,13 @@ impl<R: Real> ScratchTerms<R> {
             q.depth_half_turns_per_um,
             q.sigma,
             q.eta,
+            q.window,
         );
         let sk = Cx::blend(take, sk, Cx::zero());
         self.coherent.add(sk);
         self.incoherent = self.incoherent + sk.norm_sqr();
         if q.area_density {
-            let rho = area_density_lanes(frame, s.width, q.x0, q.sigma);
+            let rho = area_density_lanes(frame, s.width, q.x0, q.sigma, q.window);
             self.area_density = self.area_density + R::select(take, rho, zero);
         }
     }
@@ -102,6 +104,8 @@ pub struct ResponseInputs<R = f32> {
     pub sigma: f32,
     /// Finite or infinite spatial phase.
     pub eta: EtaMode,
+    /// The coherence window across a groove.
+    pub window: Window,
     /// Also accumulate ρc (costs two more `erf` evaluations per scratch).
     pub area_density: bool,
 }
@@ -183,6 +187,7 @@ pub fn scratch_term(
     depth_half_turns_per_um: f32,
     sigma: f32,
     eta_mode: EtaMode,
+    window: Window,
 ) -> C32 {
     scratch_term_lanes(
         s,
@@ -192,6 +197,7 @@ pub fn scratch_term(
         depth_half_turns_per_um,
         sigma,
         eta_mode,
+        window,
     )
     .into()
 }
@@ -206,17 +212,52 @@ pub fn scratch_term_lanes<R: Real>(
     depth_half_turns_per_um: R,
     sigma: f32,
     eta_mode: EtaMode,
+    window: Window,
 ) -> Cx<R> {
-    let (_, xi2) = xi_local_lanes(frame, xi);
+    let (s_t, s_b) = frame.offset_from_lanes(x0);
+    let (xi1, xi2) = xi_local_lanes(frame, xi);
     let profile = Profile::from_u32(s.profile);
-    let m_p = mask_minus_profile_lanes(
-        profile,
-        R::splat(s.width),
-        R::splat(s.depth),
-        depth_half_turns_per_um,
-        xi2,
-    );
-    m_p * eta_lanes(eta_mode, frame, x0, xi, sigma)
+    let (width, depth) = (R::splat(s.width), R::splat(s.depth));
+    let c = R::splat;
+    let sig = c(sigma);
+    let exact = window == Window::Exact;
+    let iv = if exact {
+        exact_across_intervals(profile, width, depth, depth_half_turns_per_um, s_b, xi2)
+    } else {
+        AcrossIntervals::none()
+    };
+    // S_k = A · η_along (`super::window`). The interval integrals, each without its centre's
+    // phase: j = 0 along the segment (finite η), j ≥ 1 across it (exact window); one loop,
+    // so inlining code holds one Faddeeva path.
+    let finite = eta_mode == EtaMode::Finite;
+    let mut along = Cx::splat(0.0, 0.0);
+    let mut sum = Cx::splat(0.0, 0.0);
+    let mut j = if finite { 0 } else { 1 };
+    while j <= iv.count {
+        let (mid, half, nu) = if j == 0 {
+            (s_t, c(frame.half_len), xi1)
+        } else {
+            (iv.mid[j - 1], iv.half[j - 1], iv.nu[j - 1])
+        };
+        let v = math::gauss_fourier_reduced_lanes(mid, half, sig, nu);
+        if j == 0 {
+            along = v;
+        } else {
+            sum = sum + iv.weight[j - 1] * v;
+        }
+        j += 1;
+    }
+    let across = if exact {
+        math::cis_pi_lanes(c(-2.0) * s_b * xi2) * sum
+    } else {
+        mask_minus_profile_lanes(profile, width, depth, depth_half_turns_per_um, xi2)
+            * frozen_across_lanes(s_b, xi2, sig)
+    };
+    if finite {
+        across * (math::cis_pi_lanes(c(-2.0) * xi1 * s_t) * along)
+    } else {
+        across.scale(infinite_along_lanes(sig, xi1))
+    }
 }
 
 /// Most wavelengths one [`scratch_response_spectral`] walk serves.
@@ -238,6 +279,8 @@ pub struct SpectralInputs {
     pub sigma: f32,
     /// Finite or infinite spatial phase.
     pub eta: EtaMode,
+    /// The coherence window across a groove.
+    pub window: Window,
     /// Also accumulate ρc (once: it does not depend on the wavelength).
     pub area_density: bool,
 }
@@ -266,6 +309,7 @@ pub fn scratch_response_spectral<S: ScratchSet>(
                     depth_half_turns_per_um: q.depth_half_turns_per_um[j],
                     sigma,
                     eta: q.eta,
+                    window: q.window,
                     area_density: false,
                 };
                 // Load, update and store the whole element: rust-gpu lost updates made
@@ -277,7 +321,7 @@ pub fn scratch_response_spectral<S: ScratchSet>(
                 j += 1;
             }
             if q.area_density {
-                rho += area_density_of(&frame, s.width, q.x0, sigma);
+                rho += area_density_of(&frame, s.width, q.x0, sigma, q.window);
             }
         }
     }
@@ -291,20 +335,44 @@ pub fn scratch_response_spectral<S: ScratchSet>(
     terms
 }
 
-/// One segment's share of ρc: `W ∫ G ds / (2πσ²)`.
+/// One segment's share of ρc: `∫∫ G dA / (2πσ²)` over the groove, with the window across
+/// it frozen (`W ∫ G ds`) or exact ([`super::window`]).
 #[inline]
-fn area_density_of(frame: &SegmentFrame, width: f32, x0: Vec2, sigma: f32) -> f32 {
-    area_density_lanes(frame, width, [x0.x, x0.y], sigma)
+fn area_density_of(frame: &SegmentFrame, width: f32, x0: Vec2, sigma: f32, window: Window) -> f32 {
+    area_density_lanes(frame, width, [x0.x, x0.y], sigma, window)
 }
 
 /// [`area_density_of`] for one `x0` per lane.
 #[inline(always)]
-fn area_density_lanes<R: Real>(frame: &SegmentFrame, width: f32, x0: [R; 2], sigma: f32) -> R {
+fn area_density_lanes<R: Real>(
+    frame: &SegmentFrame,
+    width: f32,
+    x0: [R; 2],
+    sigma: f32,
+    window: Window,
+) -> R {
     let (s_t, s_b) = frame.offset_from_lanes(x0);
     let c = R::splat;
-    let along = math::gauss_fourier_centered_lanes(s_t, c(frame.half_len), c(sigma), c(0.0)).re;
-    c(width) * (c(-0.5) * s_b * s_b / (c(sigma) * c(sigma))).exp() * along
-        / c(math::TAU * sigma * sigma)
+    // `∫ G ds` along and, with the exact window, `∫ G dv` across, in one loop (one
+    // Faddeeva path); at ν = 0 the reduced integral is the integral.
+    let exact = window == Window::Exact;
+    let mut weight = c(1.0);
+    let mut j = 0;
+    while j < if exact { 2 } else { 1 } {
+        let (mid, half) = if j == 0 {
+            (s_t, c(frame.half_len))
+        } else {
+            (s_b, c(0.5 * width))
+        };
+        weight = weight * math::gauss_fourier_reduced_lanes(mid, half, c(sigma), c(0.0)).re;
+        j += 1;
+    }
+    let across = if exact {
+        c(1.0)
+    } else {
+        c(width) * (c(-0.5) * s_b * s_b / (c(sigma) * c(sigma))).exp()
+    };
+    across * weight / c(math::TAU * sigma * sigma)
 }
 
 /// Scratch area density ρc(x0) = `(1/(2πσ²)) Σ W_k ∫_k G ds`.
@@ -313,12 +381,12 @@ fn area_density_lanes<R: Real>(frame: &SegmentFrame, width: f32, x0: [R; 2], sig
 /// a fully scratched window; this is the corrected normalisation (1 when fully covered).
 /// Werner Eq. 9's mask–scratch decomposition counts overlapping scratches twice, and so
 /// does ρc: it can exceed 1 where scratches cross (a documented model limitation).
-pub fn scratch_area_density<S: ScratchSet>(set: &S, x0: Vec2, sigma: f32) -> f32 {
+pub fn scratch_area_density<S: ScratchSet>(set: &S, x0: Vec2, sigma: f32, window: Window) -> f32 {
     let mut rho = 0.0;
     let mut cursor = NearCursor::default();
     while let Some(s) = set.next_near(&mut cursor, x0, CUTOFF_SIGMAS * sigma) {
         if let Some(frame) = s.frame() {
-            rho += area_density_of(&frame, s.width, x0, sigma);
+            rho += area_density_of(&frame, s.width, x0, sigma, window);
         }
     }
     rho

@@ -41,9 +41,10 @@ pub(super) fn dot<R: Real>(v: [R; 2], d: Vec2) -> R {
     v[0] * R::splat(d.x) + v[1] * R::splat(d.y)
 }
 
-/// The across-scratch factor `exp(−s_b²/(2σ²) − 2πi s_b ξ₂)`.
+/// The across-scratch factor `exp(−s_b²/(2σ²) − 2πi s_b ξ₂)`: the coherence window and
+/// phase at the centre line (Werner's frozen window, [`super::window`]).
 #[inline(always)]
-fn across<R: Real>(s_b: R, xi2: R, sigma: R) -> Cx<R> {
+pub fn frozen_across_lanes<R: Real>(s_b: R, xi2: R, sigma: R) -> Cx<R> {
     let g = (R::splat(-0.5) * s_b * s_b / (sigma * sigma)).exp();
     math::cis_pi_lanes(R::splat(-2.0) * s_b * xi2).scale(g)
 }
@@ -84,13 +85,18 @@ pub fn eta_lanes<R: Real>(
         EtaMode::Finite => {
             let along =
                 math::gauss_fourier_centered_lanes(s_t, R::splat(frame.half_len), sigma, xi1);
-            across(s_b, xi2, sigma) * along
+            frozen_across_lanes(s_b, xi2, sigma) * along
         }
         EtaMode::Infinite => {
-            let along = R::splat(SQRT_TAU)
-                * sigma
-                * (R::splat(-2.0 * math::PI * math::PI) * sigma * sigma * xi1 * xi1).exp();
-            across(s_b, xi2, sigma).scale(along)
+            frozen_across_lanes(s_b, xi2, sigma).scale(infinite_along_lanes(sigma, xi1))
         }
     }
+}
+
+/// The infinite scratch's along factor `√(2π) σ exp(−2π²σ²ξ₁²)` (Velinov Eq. 8).
+#[inline(always)]
+pub fn infinite_along_lanes<R: Real>(sigma: R, xi1: R) -> R {
+    R::splat(SQRT_TAU)
+        * sigma
+        * (R::splat(-2.0 * math::PI * math::PI) * sigma * sigma * xi1 * xi1).exp()
 }

@@ -47,6 +47,7 @@ pub fn evaluate_batch<S: ScratchSet, const N: usize>(
         depth_half_turns_per_um: lanes(|p| p.depth),
         sigma: m.sigma_um,
         eta: m.eta_mode(),
+        window: m.window(),
         area_density: m.needs_area_density(),
     };
     let terms = scratch_response_batch(set, &inputs, lane_use);

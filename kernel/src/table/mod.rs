@@ -62,8 +62,10 @@ pub struct TableParams {
     pub base_gaussian: u32,
     /// Coherence σ (µm).
     pub sigma_um: f32,
+    /// A [`Window`](crate::scratch::Window) as `u32`: the coherence window across a groove.
+    pub window: u32,
     /// Explicit padding.
-    pub pad: [u32; 3],
+    pub pad: [u32; 2],
 }
 
 const _: () = assert!(core::mem::size_of::<TableParams>() == 32);

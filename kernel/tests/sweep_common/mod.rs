@@ -253,7 +253,8 @@ pub fn scratch_query(family: &str, r: &Row) -> ScratchQuery {
         // werner_blended's `base` column is a BaseKind, not this flag
         base_gaussian: if blended { 0 } else { r.u("base") },
         sigma_um: r.f("sigma"),
-        pad: [0; 3],
+        window: 0,
+        pad: [0; 2],
     };
     let query = TableQuery {
         wi: r.a3("wi"),
