@@ -113,3 +113,23 @@ def test_errors_name_the_field():
         sw.ScratchSet.from_rows([[0, 0, 1, 0, 1, 0.1], [0, 0, 1, 0, -1, 0.1]])
     with pytest.raises(ValueError, match="scratches: given both"):
         sw.Material(C_MATERIAL, scratches=sw.ScratchSet.from_rows([[0, 0, 1, 0, 1, 0.1]]))
+
+
+def test_exact_window_option():
+    # A wide V groove 1.5σ off the shading point: the frozen window is off there
+    # (docs/exact_window.md), the exact one is what the spec asks for.
+    groove = {"p0": [-500, 15], "p1": [500, 15], "width": 8, "depth": 0.2, "profile": "triangle"}
+    spec = {"model": "werner", "sigma_um": 10, "material": {"F": 0.9}, "scratches": [groove]}
+    frozen = sw.Material(spec)
+    exact = sw.Material({**spec, "options": {"window": "exact"}})
+    same = sw.Material({**spec, "options": {"window": "frozen"}})
+    wi = np.array([[0.0, 0.0, 1.0]] * 3)
+    wo = np.array([[0.0, 0.05, 0.99875], [0.0, 0.12, 0.99277], [0.02, -0.2, 0.97959]])
+    a, b = frozen.eval(wo, wi), exact.eval(wo, wi)
+    np.testing.assert_array_equal(bits(a), bits(same.eval(wo, wi)))
+    assert np.all(np.isfinite(b)) and np.all(b > 0)
+    assert np.max(np.abs(a - b) / b) > 1e-2
+    with pytest.raises(sw.InputError, match=r"material\.options\.window"):
+        sw.Material({"model": "velinov", "sigma_um": 10, "options": {"window": "exact"}})
+    with pytest.raises(sw.InputError, match=r"material\.options\.window"):
+        sw.Material({**spec, "options": {"window": "wide"}})

@@ -15,6 +15,9 @@
 //!   cancellation zeros of `B − S` that `kernel/tests/cancellation_sweep.rs` bounds
 //!   separately; measured worst 4.2e-5 over 5 401 values), and `1e-4 · 1e-3` of the peak in
 //!   absolute terms below that (measured 2.3e-8 of the peak).
+//! * Asserted: `table::evaluate` with `window` exact equals the exact/summed variant
+//!   within issue #21's bounds (median 1e-3, worst 1e-2 per case; measured 4.6e-6 and
+//!   4.2e-5).
 //! * Printed, not asserted: the kernel's error against the exact/deepest variant per case
 //!   (median and worst relative error over the directions above `1e-3` of the case's peak,
 //!   and over the directions off the base lobe, `|ξ| > 0.06/µm`, above `1e-3` of their own
