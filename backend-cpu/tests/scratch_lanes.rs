@@ -27,8 +27,8 @@ mod ulp;
 /// Bound on the distance in ULP between lane and scalar results with the default math seam
 /// (libm `exp` in the scalar backend, the kernel's own in the lanes, each within 2 ULP).
 /// Werner's `|B − S|²` cancels where the scratches nearly undo the base reflection and
-/// amplifies the terms' last-bit differences (measured worst: 85 ULP, werner; 34 werner
-/// blended; 11 velinov; with the exact window 43 werner, 139 werner blended). With
+/// amplifies the terms' last-bit differences (measured worst: 118 ULP, werner; 40 werner
+/// blended; 12 velinov; with the exact window 43 werner, 139 werner blended). With
 /// `portable-math`: 0.
 #[cfg(not(feature = "portable-math"))]
 const MAX_ULP: u32 = 160;

@@ -10,14 +10,23 @@
 //!   window, by W/σ, one series per distance of the groove from the window centre;
 //! - `docs/exact_window/crossing_error.svg`: crossing pairs, the kernel and the reference's
 //!   other two approximate variants against exact window + deepest cut, by crossing angle;
+//! - `docs/exact_window/window_cost.svg`: the cost of `window: exact` per query relative to
+//!   `frozen`, scalar and SIMD on one thread, by scratches in the window (measured here, in
+//!   one run: the best of several timings of each);
 //!
-//! and prints the points as tables. Errors are `|value/exact − 1|` over the directions at
+//! The window chart also carries the kernel's `window: exact` (pooled over the distances).
+//! Prints the points as tables. Errors are `|value/exact − 1|` over the directions at
 //! least 1e-3 of the case's peak, pooled over the cases of a point (profiles, incidences,
 //! depths); each point shows their median, 90th percentile and maximum.
 
 use scratchwave_benches::svg::{Extras, HLine, Series, loglog_with};
+use scratchwave_benches::{queries_near_specular, scratches_in_window};
+use scratchwave_cpu::{Backend, evaluate_table};
+use scratchwave_kernel::scratch::Window;
+use scratchwave_kernel::table::{Model, TableParams};
 use scratchwave_testkit::heightfield::{Case, Golden, Kind, quantile, rel_errors};
 use std::process::ExitCode;
+use std::time::Instant;
 
 const COLORS: [&str; 4] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd"];
 const OUT_DIR: &str = "docs/exact_window";
@@ -111,8 +120,26 @@ fn window_chart(golden: &Golden) -> String {
                 .collect(),
         })
         .collect();
+    let mut exact_params = golden.params;
+    exact_params.window = Window::Exact as u32;
+    series.push(Series {
+        label: "kernel, window: exact (all distances)".into(),
+        color: COLORS[offsets.len().min(COLORS.len() - 1)].into(),
+        line: true,
+        points: widths
+            .iter()
+            .map(|&w| {
+                let pool: Vec<f64> = singles
+                    .iter()
+                    .filter(|c| c.w_over_sigma == w)
+                    .flat_map(|c| errors(c, &c.kernel(&exact_params, golden.material)))
+                    .collect();
+                point(w, &pool)
+            })
+            .collect(),
+    });
     print_table(
-        "Werner's frozen window (kernel) vs exact window, single 1 mm grooves",
+        "Werner's frozen window (kernel) and the kernel's exact window vs the exact window, single 1 mm grooves",
         "W/σ",
         &series,
     );
@@ -124,7 +151,7 @@ fn window_chart(golden: &Golden) -> String {
         "≥ 1e-3 of each case's peak",
     ]);
     loglog_with(
-        "Werner's frozen coherence window: error against the exact integral",
+        "Frozen and exact coherence window: error against the exact integral",
         "groove width W / σ",
         "relative error",
         &series,
@@ -194,6 +221,90 @@ fn crossing_chart(golden: &Golden) -> String {
     )
 }
 
+/// Seconds of the fastest of `repeats` evaluations of the query set.
+fn best_time(repeats: usize, mut run: impl FnMut() -> Vec<f32>) -> f64 {
+    (0..repeats)
+        .map(|_| {
+            let start = Instant::now();
+            std::hint::black_box(run());
+            start.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// `window: exact` per query over `frozen` (the criterion group `brdf_window`'s workload:
+/// Werner, σ = 10 µm, 4 096 queries near the specular direction), by scratches in the window.
+fn cost_chart() -> String {
+    let queries = queries_near_specular(4096, 7);
+    let backends = [
+        ("scalar", Backend::Scalar),
+        ("SIMD, one thread", Backend::SimdSingleThread),
+    ];
+    let mut series: Vec<Series> = backends
+        .iter()
+        .zip(COLORS)
+        .map(|((label, _), color)| Series {
+            label: format!("{label}: exact / frozen"),
+            color: color.into(),
+            line: true,
+            points: Vec::new(),
+        })
+        .collect();
+    for n in [1usize, 10, 100] {
+        let scratches = scratches_in_window(n, 10.0, n as u64);
+        for ((_, backend), s) in backends.iter().zip(&mut series) {
+            let time = |window: Window| {
+                let params = TableParams {
+                    model: Model::Werner as u32,
+                    sigma_um: 10.0,
+                    window: window as u32,
+                    ..TableParams::default()
+                };
+                best_time(7, || {
+                    evaluate_table(*backend, &params, &scratches, &queries)
+                })
+            };
+            // Interleaved, so that a change in the machine's load touches both.
+            let (mut frozen, mut exact) = (f64::INFINITY, f64::INFINITY);
+            for _ in 0..3 {
+                frozen = frozen.min(time(Window::Frozen));
+                exact = exact.min(time(Window::Exact));
+            }
+            let ratio = exact / frozen;
+            s.points.push((n as f64, ratio, ratio, ratio));
+        }
+    }
+    println!("\nCost of window: exact per query relative to frozen (Werner, 4 096 queries)");
+    println!("| backend | scratches in window | exact / frozen |\n|---|---:|---:|");
+    for s in &series {
+        for p in &s.points {
+            println!("| {} | {} | {:.2} |", s.label, p.0, p.1);
+        }
+    }
+    let extras = Extras {
+        hlines: vec![HLine {
+            y: 2.0,
+            label: "2× (issue #21's target)".into(),
+            color: "#888".into(),
+        }],
+        notes: vec![
+            "Werner, σ = 10 µm, 4 096 queries".into(),
+            "near the specular direction;".into(),
+            "best of 21 timings each".into(),
+        ],
+        whiskers: false,
+        y_headroom: 1.5,
+        ..Extras::default()
+    };
+    loglog_with(
+        "Cost of the exact across-groove window per query",
+        "scratches in the coherence window",
+        "time, exact / frozen",
+        &series,
+        &extras,
+    )
+}
+
 fn main() -> ExitCode {
     let golden = match Golden::load() {
         Ok(g) => g,
@@ -207,6 +318,7 @@ fn main() -> ExitCode {
     let charts = [
         ("window_error.svg", window_chart(&golden)),
         ("crossing_error.svg", crossing_chart(&golden)),
+        ("window_cost.svg", cost_chart()),
     ];
     if let Err(e) = std::fs::create_dir_all(&dir) {
         eprintln!("error: creating {dir}: {e}");

@@ -5,8 +5,8 @@ use super::coherent_sum::CoherentSum;
 use super::profile::{Profile, mask_minus_profile_lanes};
 use super::record::{Scratch, SegmentFrame};
 use super::set::{NearCursor, ScratchSet};
-use super::spatial_phase::{EtaMode, frozen_across_lanes, infinite_along_lanes, xi_local_lanes};
-use super::window::{AcrossIntervals, Window, exact_across_intervals};
+use super::spatial_phase::{EtaMode, eta_lanes, infinite_along_lanes, xi_local_lanes};
+use super::window::{Window, exact_across_intervals};
 use crate::lane::{Blend, Cx, Real};
 #[cfg(not(target_arch = "spirv"))]
 use crate::lane::{LaneMask, Lanes};
@@ -129,6 +129,31 @@ pub fn scratch_response_batch<S: ScratchSet, const N: usize>(
     q: &ResponseInputs<Lanes<N>>,
     lane_use: &mut LaneUse,
 ) -> ScratchTerms<Lanes<N>> {
+    // One walk per window, each with its window a constant, so that the frozen walk holds
+    // no call (the exact window's terms are out of line).
+    if q.window == Window::Exact {
+        let exact = ResponseInputs {
+            window: Window::Exact,
+            ..*q
+        };
+        batch_walk(set, &exact, lane_use)
+    } else {
+        let frozen = ResponseInputs {
+            window: Window::Frozen,
+            ..*q
+        };
+        batch_walk(set, &frozen, lane_use)
+    }
+}
+
+/// [`scratch_response_batch`]'s walk.
+#[cfg(not(target_arch = "spirv"))]
+#[inline(always)]
+fn batch_walk<S: ScratchSet, const N: usize>(
+    set: &S,
+    q: &ResponseInputs<Lanes<N>>,
+    lane_use: &mut LaneUse,
+) -> ScratchTerms<Lanes<N>> {
     let mut terms = ScratchTerms::empty(q.sigma);
     let radius = CUTOFF_SIGMAS * q.sigma;
     let points: [Vec2; N] = core::array::from_fn(|i| Vec2::new(q.x0[0].0[i], q.x0[1].0[i]));
@@ -203,7 +228,11 @@ pub fn scratch_term(
 }
 
 /// [`scratch_term`] for one `x0`, `ξ` and depth phase per lane (the one formula).
+///
+/// The frozen window inline; the exact window out of line ([`exact_window_term_lanes`]), so
+/// that the frozen path's code inside the SIMD batches and the shader stays as it was.
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 pub fn scratch_term_lanes<R: Real>(
     s: &Scratch,
     frame: &SegmentFrame,
@@ -214,21 +243,45 @@ pub fn scratch_term_lanes<R: Real>(
     eta_mode: EtaMode,
     window: Window,
 ) -> Cx<R> {
+    if window == Window::Exact {
+        return exact_window_term_lanes(s, frame, x0, xi, depth_half_turns_per_um, sigma, eta_mode);
+    }
+    let (_, xi2) = xi_local_lanes(frame, xi);
+    let profile = Profile::from_u32(s.profile);
+    let m_p = mask_minus_profile_lanes(
+        profile,
+        R::splat(s.width),
+        R::splat(s.depth),
+        depth_half_turns_per_um,
+        xi2,
+    );
+    m_p * eta_lanes(eta_mode, frame, x0, xi, sigma)
+}
+
+/// [`scratch_term_lanes`] with the exact across-groove window: `S_k = A · η_along`
+/// ([`super::window`]).
+///
+/// Out of line on the CPU: inside a `#[target_feature]` caller (the AVX2 batches) it runs in
+/// the baseline instruction set. The interval integrals, each without its centre's phase,
+/// share one loop (`j = 0` along the segment when finite, `j ≥ 1` across it), so the
+/// function holds one copy of the Faddeeva path.
+#[cfg_attr(not(target_arch = "spirv"), inline(never))]
+fn exact_window_term_lanes<R: Real>(
+    s: &Scratch,
+    frame: &SegmentFrame,
+    x0: [R; 2],
+    xi: [R; 2],
+    depth_half_turns_per_um: R,
+    sigma: f32,
+    eta_mode: EtaMode,
+) -> Cx<R> {
+    let c = R::splat;
     let (s_t, s_b) = frame.offset_from_lanes(x0);
     let (xi1, xi2) = xi_local_lanes(frame, xi);
     let profile = Profile::from_u32(s.profile);
-    let (width, depth) = (R::splat(s.width), R::splat(s.depth));
-    let c = R::splat;
+    let (width, depth) = (c(s.width), c(s.depth));
     let sig = c(sigma);
-    let exact = window == Window::Exact;
-    let iv = if exact {
-        exact_across_intervals(profile, width, depth, depth_half_turns_per_um, s_b, xi2)
-    } else {
-        AcrossIntervals::none()
-    };
-    // S_k = A · η_along (`super::window`). The interval integrals, each without its centre's
-    // phase: j = 0 along the segment (finite η), j ≥ 1 across it (exact window); one loop,
-    // so inlining code holds one Faddeeva path.
+    let iv = exact_across_intervals(profile, width, depth, depth_half_turns_per_um, s_b, xi2);
     let finite = eta_mode == EtaMode::Finite;
     let mut along = Cx::splat(0.0, 0.0);
     let mut sum = Cx::splat(0.0, 0.0);
@@ -247,12 +300,7 @@ pub fn scratch_term_lanes<R: Real>(
         }
         j += 1;
     }
-    let across = if exact {
-        math::cis_pi_lanes(c(-2.0) * s_b * xi2) * sum
-    } else {
-        mask_minus_profile_lanes(profile, width, depth, depth_half_turns_per_um, xi2)
-            * frozen_across_lanes(s_b, xi2, sig)
-    };
+    let across = math::cis_pi_lanes(c(-2.0) * s_b * xi2) * sum;
     if finite {
         across * (math::cis_pi_lanes(c(-2.0) * xi1 * s_t) * along)
     } else {
@@ -342,7 +390,8 @@ fn area_density_of(frame: &SegmentFrame, width: f32, x0: Vec2, sigma: f32, windo
     area_density_lanes(frame, width, [x0.x, x0.y], sigma, window)
 }
 
-/// [`area_density_of`] for one `x0` per lane.
+/// [`area_density_of`] for one `x0` per lane; the exact window out of line (as in
+/// [`scratch_term_lanes`]).
 #[inline(always)]
 fn area_density_lanes<R: Real>(
     frame: &SegmentFrame,
@@ -351,14 +400,30 @@ fn area_density_lanes<R: Real>(
     sigma: f32,
     window: Window,
 ) -> R {
+    if window == Window::Exact {
+        return exact_window_area_density_lanes(frame, width, x0, sigma);
+    }
     let (s_t, s_b) = frame.offset_from_lanes(x0);
     let c = R::splat;
-    // `∫ G ds` along and, with the exact window, `∫ G dv` across, in one loop (one
-    // Faddeeva path); at ν = 0 the reduced integral is the integral.
-    let exact = window == Window::Exact;
+    let along = math::gauss_fourier_centered_lanes(s_t, c(frame.half_len), c(sigma), c(0.0)).re;
+    c(width) * (c(-0.5) * s_b * s_b / (c(sigma) * c(sigma))).exp() * along
+        / c(math::TAU * sigma * sigma)
+}
+
+/// [`area_density_lanes`] with the exact window: `∫ G ds` along times `∫ G dv` across the
+/// width, in one loop (one Faddeeva path; at ν = 0 the reduced integral is the integral).
+#[cfg_attr(not(target_arch = "spirv"), inline(never))]
+fn exact_window_area_density_lanes<R: Real>(
+    frame: &SegmentFrame,
+    width: f32,
+    x0: [R; 2],
+    sigma: f32,
+) -> R {
+    let (s_t, s_b) = frame.offset_from_lanes(x0);
+    let c = R::splat;
     let mut weight = c(1.0);
     let mut j = 0;
-    while j < if exact { 2 } else { 1 } {
+    while j < 2 {
         let (mid, half) = if j == 0 {
             (s_t, c(frame.half_len))
         } else {
@@ -367,12 +432,7 @@ fn area_density_lanes<R: Real>(
         weight = weight * math::gauss_fourier_reduced_lanes(mid, half, c(sigma), c(0.0)).re;
         j += 1;
     }
-    let across = if exact {
-        c(1.0)
-    } else {
-        c(width) * (c(-0.5) * s_b * s_b / (c(sigma) * c(sigma))).exp()
-    };
-    across * weight / c(math::TAU * sigma * sigma)
+    weight / c(math::TAU * sigma * sigma)
 }
 
 /// Scratch area density ρc(x0) = `(1/(2πσ²)) Σ W_k ∫_k G ds`.

@@ -46,8 +46,8 @@ gpu_enum! {
 /// The exact across-groove factor as `A = e^{−2πi s_b ξ₂} Σ_j w_j Ĩ_j` (module docs): the
 /// intervals `Ĩ_j` (centre, half length, frequency in 1/µm) and their weights, `count` of
 /// them (the rectangle 1, the V groove 3: its whole width and its two halves). The caller
-/// evaluates them in one loop with its other interval integrals, so that code which inlines
-/// a scratch term (the SIMD batches, the shader) holds one copy of the Faddeeva path.
+/// evaluates them in one loop with its other interval integrals (one copy of the Faddeeva
+/// path).
 #[derive(Clone, Copy, Debug)]
 pub struct AcrossIntervals<R> {
     /// Centres, relative to `x0` across the groove (µm).
@@ -60,21 +60,6 @@ pub struct AcrossIntervals<R> {
     pub weight: [Cx<R>; 3],
     /// How many are used.
     pub count: usize,
-}
-
-impl<R: Real> AcrossIntervals<R> {
-    /// None (the frozen window).
-    #[inline(always)]
-    pub fn none() -> Self {
-        let zero = R::splat(0.0);
-        AcrossIntervals {
-            mid: [zero; 3],
-            half: [zero; 3],
-            nu: [zero; 3],
-            weight: [Cx::splat(0.0, 0.0); 3],
-            count: 0,
-        }
-    }
 }
 
 /// [`AcrossIntervals`] of one segment: `s_b` its centre line's offset from `x0` across,
