@@ -100,6 +100,20 @@ fn window_chart(golden: &Golden) -> String {
     let mut widths: Vec<f64> = singles.iter().map(|c| c.w_over_sigma).collect();
     widths.sort_by(f64::total_cmp);
     widths.dedup();
+    // One point per width: the kernel with `params` on the grooves that `keep` selects.
+    let points = |params: &TableParams, keep: &dyn Fn(&Case) -> bool| -> Vec<_> {
+        widths
+            .iter()
+            .map(|&w| {
+                let pool: Vec<f64> = singles
+                    .iter()
+                    .filter(|c| c.w_over_sigma == w && keep(c))
+                    .flat_map(|c| errors(c, &c.kernel(params, golden.material)))
+                    .collect();
+                point(w, &pool)
+            })
+            .collect()
+    };
     let mut series: Vec<Series> = offsets
         .iter()
         .zip(COLORS)
@@ -107,17 +121,7 @@ fn window_chart(golden: &Golden) -> String {
             label: format!("groove {offset}σ from the centre"),
             color: color.into(),
             line: true,
-            points: widths
-                .iter()
-                .map(|&w| {
-                    let pool: Vec<f64> = singles
-                        .iter()
-                        .filter(|c| c.offset_sigma == offset && c.w_over_sigma == w)
-                        .flat_map(|c| errors(c, &c.kernel(&golden.params, golden.material)))
-                        .collect();
-                    point(w, &pool)
-                })
-                .collect(),
+            points: points(&golden.params, &|c| c.offset_sigma == offset),
         })
         .collect();
     let mut exact_params = golden.params;
@@ -126,17 +130,7 @@ fn window_chart(golden: &Golden) -> String {
         label: "kernel, window: exact (all distances)".into(),
         color: COLORS[offsets.len().min(COLORS.len() - 1)].into(),
         line: true,
-        points: widths
-            .iter()
-            .map(|&w| {
-                let pool: Vec<f64> = singles
-                    .iter()
-                    .filter(|c| c.w_over_sigma == w)
-                    .flat_map(|c| errors(c, &c.kernel(&exact_params, golden.material)))
-                    .collect();
-                point(w, &pool)
-            })
-            .collect(),
+        points: points(&exact_params, &|_| true),
     });
     print_table(
         "Werner's frozen window (kernel) and the kernel's exact window vs the exact window, single 1 mm grooves",
