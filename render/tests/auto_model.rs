@@ -143,3 +143,30 @@ fn tolerance_is_checked_and_belongs_to_auto() {
         scratchwave_spec::material::DEFAULT_TOLERANCE
     );
 }
+
+#[test]
+fn the_exact_window_belongs_to_the_coherent_models() {
+    let exact = json!({"options": {"window": "exact"}});
+    for model in ["velinov", "auto"] {
+        let e = read(&scene(json!(model), exact.clone()))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("materials.plate.options.window"), "{model}: {e}");
+        assert!(e.contains("werner_blended"), "{model}: {e}");
+    }
+    for model in ["werner", "werner_blended"] {
+        let s = read(&scene(json!(model), exact.clone())).unwrap();
+        assert_eq!(
+            s.materials[0].shade.table.window,
+            scratchwave_kernel::scratch::Window::Exact as u32,
+            "{model}"
+        );
+    }
+    let e = read(&scene(
+        json!("werner"),
+        json!({"options": {"window": "wide"}}),
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("materials.plate.options.window"), "{e}");
+}

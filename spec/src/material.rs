@@ -155,7 +155,10 @@ pub fn scene_material(
         {
             return Err(SpecError::field(
                 format!("{path}.window"),
-                "\"exact\" is for the coherent models in scenes (\"werner\",                  \"werner_blended\"): the incoherent model's footprint and area-light closed                  forms take the frozen window (a table spec may use it with \"velinov\")",
+                "\"exact\" is for the coherent models in scenes (\"werner\", \
+                 \"werner_blended\"): the incoherent model's footprint and area-light \
+                 closed forms take the frozen window (a table spec may use it with \
+                 \"velinov\")",
             ));
         }
     }
