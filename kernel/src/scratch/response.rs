@@ -229,8 +229,9 @@ pub fn scratch_term(
 
 /// [`scratch_term`] for one `x0`, `ξ` and depth phase per lane (the one formula).
 ///
-/// The frozen window inline; the exact window out of line ([`exact_window_term_lanes`]), so
-/// that the frozen path's code inside the SIMD batches and the shader stays as it was.
+/// The frozen window inline; the exact window out of line on the CPU
+/// (`exact_window_term_lanes`), so that the frozen path's code inside the SIMD batches
+/// stays as it was.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn scratch_term_lanes<R: Real>(
