@@ -10,7 +10,7 @@ use criterion::measurement::WallTime;
 use criterion::{
     BenchmarkGroup, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main,
 };
-use scratchwave_benches::{queries_near_specular, scratches_in_window};
+use scratchwave_benches::{queries_near_specular, scratches_in_window, werner_window_params};
 use scratchwave_cpu::{Backend, evaluate_table};
 use scratchwave_kernel::scratch::Window;
 use scratchwave_kernel::table::{Model, TableParams, TableQuery};
@@ -65,12 +65,7 @@ fn brdf_window(c: &mut Criterion) {
             ("simd", Backend::SimdSingleThread),
         ] {
             for (window, w) in [("frozen", Window::Frozen), ("exact", Window::Exact)] {
-                let params = TableParams {
-                    model: Model::Werner as u32,
-                    sigma_um: 10.0,
-                    window: w as u32,
-                    ..TableParams::default()
-                };
+                let params = werner_window_params(w);
                 let id = BenchmarkId::new(format!("{backend}_{window}"), n);
                 g.bench_with_input(id, &n, |bench, _| {
                     bench.iter(|| evaluate_table(b, &params, &scratches, &queries))

@@ -12,8 +12,8 @@ pub mod tradeoff;
 use scratchwave_host::generate::{HalfLength, ProfileMix, ScratchRecipe, Uniform};
 pub use scratchwave_host::rng::SplitMix64 as Rng;
 use scratchwave_kernel::material::Material;
-use scratchwave_kernel::scratch::Scratch;
-use scratchwave_kernel::table::TableQuery;
+use scratchwave_kernel::scratch::{Scratch, Window};
+use scratchwave_kernel::table::{Model, TableParams, TableQuery};
 
 /// `n` scratches crossing the coherence window around the origin (all within 2σ), random
 /// orientations, half lengths 1–5σ, widths 0.5–3 µm, depths 0.05–0.5 µm, both profiles.
@@ -48,4 +48,15 @@ pub fn queries_near_specular(n: usize, seed: u64) -> Vec<TableQuery> {
             }
         })
         .collect()
+}
+
+/// The window-cost workload's table (the criterion group `brdf_window` and
+/// `exact_window_chart`): Werner at σ = 10 µm with the coherence window `window`.
+pub fn werner_window_params(window: Window) -> TableParams {
+    TableParams {
+        model: Model::Werner as u32,
+        sigma_um: 10.0,
+        window: window as u32,
+        ..TableParams::default()
+    }
 }

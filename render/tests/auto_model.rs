@@ -43,6 +43,11 @@ fn read(v: &Value) -> Result<Scene, scratchwave_spec::SpecError> {
     scene_from_value_with_limit(v, "auto", Path::new("."), 1 << 30)
 }
 
+/// The reader's error for a scene it must refuse.
+fn read_err(v: &Value) -> String {
+    read(v).unwrap_err().to_string()
+}
+
 fn render(v: &Value) -> (Image, scratchwave_render::render::RenderStats) {
     let r = render_scene(&read(v).unwrap(), Backend::Cpu, &|_, _| {}).unwrap();
     (r.image, r.stats)
@@ -117,7 +122,7 @@ fn pure_pixels_equal_the_fixed_models_bit_for_bit() {
 #[test]
 fn tolerance_is_checked_and_belongs_to_auto() {
     let err = |v: &Value| {
-        let e = read(v).unwrap_err().to_string();
+        let e = read_err(v);
         assert!(e.contains("materials.plate.tolerance"), "{e}");
         e
     };
@@ -129,12 +134,10 @@ fn tolerance_is_checked_and_belongs_to_auto() {
     let e = err(&scene(json!("werner"), json!({"tolerance": 0.01})));
     assert!(e.contains("auto"), "{e}");
     // Options of Velinov's model alone are not taken by auto.
-    let e = read(&scene(
+    let e = read_err(&scene(
         json!("auto"),
         json!({"options": {"eta": "infinite"}}),
-    ))
-    .unwrap_err()
-    .to_string();
+    ));
     assert!(e.contains("materials.plate.options.eta"), "{e}");
     // The default tolerance.
     let s = read(&scene(json!("auto"), json!({}))).unwrap();
@@ -148,9 +151,7 @@ fn tolerance_is_checked_and_belongs_to_auto() {
 fn the_exact_window_belongs_to_the_coherent_models() {
     let exact = json!({"options": {"window": "exact"}});
     for model in ["velinov", "auto"] {
-        let e = read(&scene(json!(model), exact.clone()))
-            .unwrap_err()
-            .to_string();
+        let e = read_err(&scene(json!(model), exact.clone()));
         assert!(e.contains("materials.plate.options.window"), "{model}: {e}");
         assert!(e.contains("werner_blended"), "{model}: {e}");
     }
@@ -162,11 +163,9 @@ fn the_exact_window_belongs_to_the_coherent_models() {
             "{model}"
         );
     }
-    let e = read(&scene(
+    let e = read_err(&scene(
         json!("werner"),
         json!({"options": {"window": "wide"}}),
-    ))
-    .unwrap_err()
-    .to_string();
+    ));
     assert!(e.contains("materials.plate.options.window"), "{e}");
 }

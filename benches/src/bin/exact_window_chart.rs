@@ -20,10 +20,10 @@
 //! depths); each point shows their median, 90th percentile and maximum.
 
 use scratchwave_benches::svg::{Extras, HLine, Series, loglog_with};
-use scratchwave_benches::{queries_near_specular, scratches_in_window};
+use scratchwave_benches::{queries_near_specular, scratches_in_window, werner_window_params};
 use scratchwave_cpu::{Backend, evaluate_table};
 use scratchwave_kernel::scratch::Window;
-use scratchwave_kernel::table::{Model, TableParams};
+use scratchwave_kernel::table::TableParams;
 use scratchwave_testkit::heightfield::{Case, Golden, Kind, quantile, rel_errors};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -248,12 +248,7 @@ fn cost_chart() -> String {
         let scratches = scratches_in_window(n, 10.0, n as u64);
         for ((_, backend), s) in backends.iter().zip(&mut series) {
             let time = |window: Window| {
-                let params = TableParams {
-                    model: Model::Werner as u32,
-                    sigma_um: 10.0,
-                    window: window as u32,
-                    ..TableParams::default()
-                };
+                let params = werner_window_params(window);
                 best_time(7, || {
                     evaluate_table(*backend, &params, &scratches, &queries)
                 })
