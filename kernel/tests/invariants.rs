@@ -2,7 +2,9 @@
 //! f64 computation written here (never against the kernel's own output).
 
 use scratchwave_kernel::material::{FresnelAngle, Material};
-use scratchwave_kernel::scratch::{Profile, Scratch, ScratchSlice, Window, scratch_area_density};
+use scratchwave_kernel::scratch::{
+    Crossings, Profile, Scratch, ScratchSlice, Window, scratch_area_density,
+};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery, evaluate};
 use std::f64::consts::PI;
 
@@ -114,8 +116,37 @@ fn fully_scratched_window_has_unit_area_density() {
         glam::Vec2::new(0.3, 0.1),
         10.0,
         Window::Frozen,
+        Crossings::Summed,
     );
     assert!((rho - 1.0).abs() < 1e-4, "ρc = {rho}");
+}
+
+/// Two crossed layers of abutting strips scratch every point of the window twice: ρc is 2
+/// with Werner's summed crossings and 1 with the deeper cut counted once (issue #21), for
+/// both windows. (Strips of one layer touch along their edges only: zero overlap.)
+#[test]
+fn deepest_crossings_count_a_doubly_scratched_window_once() {
+    let w = 2.0f32;
+    let mut s: Vec<Scratch> = Vec::new();
+    for k in -60..=60 {
+        let c = k as f32 * w;
+        s.push(rect([-1000.0, c], [1000.0, c], w, 0.1));
+        s.push(rect([c, -1000.0], [c, 1000.0], w, 0.2));
+    }
+    let set = ScratchSlice { scratches: &s };
+    let x = glam::Vec2::new(0.3, 0.1);
+    for window in [Window::Frozen, Window::Exact] {
+        let summed = scratch_area_density(&set, x, 10.0, window, Crossings::Summed);
+        let deepest = scratch_area_density(&set, x, 10.0, window, Crossings::Deepest);
+        assert!(
+            (summed - 2.0).abs() < 2e-4,
+            "{window:?} summed ρc = {summed}"
+        );
+        assert!(
+            (deepest - 1.0).abs() < 2e-4,
+            "{window:?} deepest ρc = {deepest}"
+        );
+    }
 }
 
 /// Werner's BRDF depends on wi, wo only through ξ ∝ wi + wo, γ = wi.z + wo.z and F(θd):

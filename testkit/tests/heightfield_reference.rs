@@ -200,3 +200,64 @@ fn exact_window_matches_exact_summed_heightfield_reference() {
     );
     assert!(failures.is_empty(), "{}", failures.join("; "));
 }
+
+/// `crossings: deepest` (issue #21) against the reference's deepest-cut variants, for every
+/// crossing case (two grooves at 90°, 45° and 10°, equal and unequal depths, both profiles,
+/// normal and 30° incidence): with `window: exact` against exact/deepest (the surface as it
+/// is) within the issue's bounds (median ≤ 1e-3, worst ≤ 1e-2 per case, over the
+/// directions above `1e-3` of the case's peak), and with the frozen window against
+/// frozen/deepest (the same cut with Werner's window) within the same bounds. Printed per
+/// case beside Werner's (frozen/summed) error against the surface.
+#[test]
+fn deepest_crossings_match_the_deepest_heightfield_reference() {
+    use scratchwave_kernel::scratch::{Crossings, Window};
+    let golden = Golden::load().unwrap();
+    let mut failures = Vec::new();
+    let (mut worst_med, mut worst_max) = ([0.0f64; 2], [0.0f64; 2]);
+    println!("\ncrossings: deepest against the reference, relative error (median / worst)");
+    println!(
+        "| case | exact/deepest vs exact/deepest | frozen/deepest vs frozen/deepest | Werner (frozen/summed) vs exact/deepest |"
+    );
+    println!("|---|---:|---:|---:|");
+    for case in golden
+        .cases
+        .iter()
+        .filter(|c| matches!(c.kind, Kind::Crossing { .. }))
+    {
+        let all = vec![true; case.wo.len()];
+        let mut row = Vec::new();
+        for (k, (window, variant)) in [
+            (Window::Exact, "exact_deepest"),
+            (Window::Frozen, "frozen_deepest"),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let mut params = golden.params;
+            params.window = window as u32;
+            params.crossings = Crossings::Deepest as u32;
+            let got = case.kernel(&params, golden.material);
+            let (med, worst) = med_max(&rel_errors(&got, case.variant(variant).unwrap(), &all));
+            worst_med[k] = worst_med[k].max(med);
+            worst_max[k] = worst_max[k].max(worst);
+            if med > 1e-3 || worst > 1e-2 {
+                failures.push(format!(
+                    "{} ({variant}): median {med:.2e}, worst {worst:.2e}",
+                    case.name
+                ));
+            }
+            row.push(format!("{med:.2e} / {worst:.2e}"));
+        }
+        let werner = case.kernel(&golden.params, golden.material);
+        let (wm, ww) = med_max(&rel_errors(&werner, case.truth(), &all));
+        println!(
+            "| {} | {} | {} | {wm:.2e} / {ww:.2e} |",
+            case.name, row[0], row[1]
+        );
+    }
+    println!(
+        "\ncrossings deepest: exact window worst median {:.2e}, worst {:.2e}; frozen window worst median {:.2e}, worst {:.2e}",
+        worst_med[0], worst_max[0], worst_med[1], worst_max[1]
+    );
+    assert!(failures.is_empty(), "{}", failures.join("; "));
+}

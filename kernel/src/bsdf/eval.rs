@@ -59,7 +59,7 @@ pub fn eval<S: ScratchSet>(
                 velinov_footprint_brdf_spectral(&params, &m.material, wi, wo, &e, &wl.nm, n, set);
             // The renderer weights a GHS base by 1 − ρc at the footprint centre.
             if ghs_base {
-                scratch_area_density(set, sp.x(), sigma, m.window())
+                scratch_area_density(set, sp.x(), sigma, m.window(), m.crossings())
             } else {
                 0.0
             }
@@ -126,6 +126,7 @@ pub fn scratch_point_values<S: ScratchSet>(
         sigma,
         eta: m.eta_mode(),
         window: m.window(),
+        crossings: m.crossings(),
         area_density: m.needs_area_density(),
     };
     let terms = scratch_response_spectral(set, &q);

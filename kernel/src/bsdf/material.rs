@@ -11,7 +11,7 @@ use super::scratch_models::Model;
 use crate::ghs::GhsParams;
 use crate::material::Material;
 use crate::render::shading::{BaseKind, SceneModel, ShadeMaterial};
-use crate::scratch::{DepthTerm, EtaMode, Window};
+use crate::scratch::{Crossings, DepthTerm, EtaMode, Window};
 use crate::table::TableParams;
 use bytemuck::{Pod, Zeroable};
 
@@ -58,8 +58,8 @@ pub struct BsdfMaterial {
     pub sigma_um: f32,
     /// A [`Window`] as `u32`: the coherence window across a groove (every scratch model).
     pub window: u32,
-    /// Explicit padding.
-    pub pad: [u32; 1],
+    /// A [`Crossings`] as `u32`: how overlapping grooves cut (the coherent models).
+    pub crossings: u32,
     /// The scratch models' reflectance F.
     pub material: Material,
     /// GHS parameters: the material of model `Ghs`, or the base of [`BaseKind::Ghs`].
@@ -105,7 +105,7 @@ impl BsdfMaterial {
             base_gaussian: 0,
             sigma_um,
             window: Window::Frozen as u32,
-            pad: [0; 1],
+            crossings: Crossings::Summed as u32,
             material,
             ghs: GhsParams::new(0.0, 0.1, 1.0, 1.0, 2.0, 1.5, 0.0),
         }
@@ -132,7 +132,7 @@ impl BsdfMaterial {
             base_gaussian: m.table.base_gaussian,
             sigma_um: m.table.sigma_um,
             window: m.table.window,
-            pad: [0; 1],
+            crossings: m.table.crossings,
             material: m.material,
             ghs: m.ghs,
         }
@@ -154,6 +154,7 @@ impl BsdfMaterial {
         m.depth = depth as u32;
         m.base_gaussian = params.base_gaussian;
         m.window = params.window;
+        m.crossings = params.crossings;
         m
     }
 
@@ -205,6 +206,12 @@ impl BsdfMaterial {
         Window::from_u32(self.window)
     }
 
+    /// How overlapping grooves cut.
+    #[inline]
+    pub fn crossings(&self) -> Crossings {
+        Crossings::from_u32(self.crossings)
+    }
+
     /// Whether the `(1 − ρc)` GHS base applies (WernerBlended and Velinov with
     /// [`BaseKind::Ghs`], as in the renderer).
     #[inline]
@@ -241,7 +248,8 @@ impl BsdfMaterial {
             base_gaussian: self.base_gaussian,
             sigma_um: self.sigma_um,
             window: self.window,
-            pad: [0; 2],
+            crossings: self.crossings,
+            pad: [0; 1],
         }
     }
 }

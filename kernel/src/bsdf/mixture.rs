@@ -82,7 +82,7 @@ fn fixed<S: ScratchSet>(m: &BsdfMaterial, sp: &ShadingPoint, wo: Vec3, set: &S) 
     let ghs_model = model == SceneModel::Ghs;
     let needs_rho = m.has_ghs_base() || (model == SceneModel::Velinov && m.base_gaussian == 1);
     let rho = if needs_rho && sigma > 0.0 {
-        scratch_area_density(set, sp.x(), sigma, m.window())
+        scratch_area_density(set, sp.x(), sigma, m.window(), m.crossings())
     } else {
         0.0
     };

@@ -26,7 +26,7 @@ use crate::lights::{
 };
 use crate::material::Material;
 use crate::math;
-use crate::scratch::{ScratchSet, Window, scratch_area_density};
+use crate::scratch::{Crossings, ScratchSet, Window, scratch_area_density};
 use crate::table::TableParams;
 use crate::units::direction;
 use bytemuck::{Pod, Zeroable};
@@ -93,7 +93,13 @@ const _: () = assert!(core::mem::size_of::<ShadeMaterial>() == 128);
 #[inline]
 pub fn base_weight<S: ScratchSet>(m: &ShadeMaterial, x: Vec2, set: &S) -> f32 {
     math::max(
-        1.0 - scratch_area_density(set, x, m.table.sigma_um, Window::from_u32(m.table.window)),
+        1.0 - scratch_area_density(
+            set,
+            x,
+            m.table.sigma_um,
+            Window::from_u32(m.table.window),
+            Crossings::from_u32(m.table.crossings),
+        ),
         0.0,
     )
 }

@@ -9,9 +9,11 @@
 //! | `set` | "every scratch near x0": brute force or the flattened BVH |
 //! | `response` | base response B (Eq. 16), scratch response S (Eq. 17), ρc |
 //! | `window` | the coherence window across a groove: frozen (Werner) or exact (#21) |
+//! | `crossing` | crossings cut once by the deeper groove (#21): the pair correction |
 //! | `coherent_sum` | `S = Σ S_k` summed exactly on a grid, so `B − S` survives cancellation |
 
 pub mod coherent_sum;
+pub mod crossing;
 pub mod grid;
 pub mod profile;
 pub mod record;
@@ -21,6 +23,7 @@ pub mod spatial_phase;
 pub mod window;
 
 pub use coherent_sum::CoherentSum;
+pub use crossing::Crossings;
 pub use grid::{GridHeader, ScratchGrid};
 pub use profile::{DepthTerm, Profile};
 pub use record::{Scratch, SegmentFrame};

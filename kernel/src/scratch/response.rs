@@ -2,6 +2,9 @@
 //! and the scratch area density ρc (Werner §5, Velinov Eq. 17 corrected).
 
 use super::coherent_sum::CoherentSum;
+use super::crossing::{
+    Crossings, crossing_correction_lanes, crossing_overlap_weight_lanes, may_overlap,
+};
 use super::profile::{Profile, mask_minus_profile_lanes};
 use super::record::{Scratch, SegmentFrame};
 use super::set::{NearCursor, ScratchSet};
@@ -88,6 +91,53 @@ impl<R: Real> ScratchTerms<R> {
             self.area_density = self.area_density + R::select(take, rho, zero);
         }
     }
+
+    /// Takes the overlap of scratches `a` and `b` (`a` first in the walk) out once, in the
+    /// lanes of `take`: the crossing correction from `S`
+    /// ([`super::crossing::crossing_correction_lanes`]) and, when `q` asks for ρc, the
+    /// overlap's second count from ρc. The one pair step of the walks with
+    /// [`Crossings::Deepest`].
+    #[inline(always)]
+    pub fn take_out_overlap(
+        &mut self,
+        a: (&Scratch, &SegmentFrame),
+        b: (&Scratch, &SegmentFrame),
+        q: &ResponseInputs<R>,
+        near: (Vec2, f32),
+        take: R::Mask,
+    ) {
+        let c = crossing_correction_lanes(
+            a.0,
+            a.1,
+            b.0,
+            b.1,
+            q.x0,
+            q.xi,
+            q.depth_half_turns_per_um,
+            q.sigma,
+            q.window,
+            near,
+        );
+        self.coherent.add(-Cx::blend(take, c, Cx::zero()));
+        if q.area_density {
+            let w = overlap_density_lanes(a, b, q.x0, q.sigma, q.window, near);
+            self.area_density = self.area_density - R::select(take, w, R::splat(0.0));
+        }
+    }
+}
+
+/// The overlap of `a` and `b` in ρc: `∫_O G dA / (2πσ²)`.
+#[inline(always)]
+fn overlap_density_lanes<R: Real>(
+    a: (&Scratch, &SegmentFrame),
+    b: (&Scratch, &SegmentFrame),
+    x0: [R; 2],
+    sigma: f32,
+    window: Window,
+    near: (Vec2, f32),
+) -> R {
+    crossing_overlap_weight_lanes(a.0, a.1, b.0, b.1, x0, sigma, window, near)
+        / R::splat(math::TAU * sigma * sigma)
 }
 
 /// Per-query inputs of the scratch response (one query per lane).
@@ -106,6 +156,8 @@ pub struct ResponseInputs<R = f32> {
     pub eta: EtaMode,
     /// The coherence window across a groove.
     pub window: Window,
+    /// How overlapping grooves cut (the coherent sum and ρc).
+    pub crossings: Crossings,
     /// Also accumulate ρc (costs two more `erf` evaluations per scratch).
     pub area_density: bool,
 }
@@ -182,6 +234,32 @@ fn batch_walk<S: ScratchSet, const N: usize>(
             lane_use.lanes += n as u64;
             if n > 0 {
                 terms.accumulate(&s, &frame, q, take);
+                if q.crossings == Crossings::Deepest {
+                    // Every later candidate once: the walk resumed from here.
+                    let mut later = cursor;
+                    while let Some(s2) = set.next_near(&mut later, centre, union) {
+                        if let Some(frame2) = s2.frame()
+                            && may_overlap(&frame, &s, &frame2, &s2)
+                        {
+                            let both = LaneMask(core::array::from_fn(|i| {
+                                if take.0[i] != 0 && s2.distance_to(points[i]) <= radius {
+                                    u32::MAX
+                                } else {
+                                    0
+                                }
+                            }));
+                            if both.0.iter().any(|&m| m != 0) {
+                                terms.take_out_overlap(
+                                    (&s, &frame),
+                                    (&s2, &frame2),
+                                    q,
+                                    (centre, union),
+                                    both,
+                                );
+                            }
+                        }
+                    }
+                }
             }
         }
     }
@@ -233,7 +311,6 @@ pub fn scratch_term(
 /// (`exact_window_term_lanes`), so that the frozen path's code inside the SIMD batches
 /// stays as it was.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
 pub fn scratch_term_lanes<R: Real>(
     s: &Scratch,
     frame: &SegmentFrame,
@@ -330,8 +407,27 @@ pub struct SpectralInputs {
     pub eta: EtaMode,
     /// The coherence window across a groove.
     pub window: Window,
+    /// How overlapping grooves cut (the coherent sum and ρc).
+    pub crossings: Crossings,
     /// Also accumulate ρc (once: it does not depend on the wavelength).
     pub area_density: bool,
+}
+
+impl SpectralInputs {
+    /// Wavelength `j`'s [`ResponseInputs`] (without ρc, which the walk gathers once).
+    #[inline]
+    fn one(&self, j: usize) -> ResponseInputs {
+        ResponseInputs {
+            x0: [self.x0.x, self.x0.y],
+            xi: [self.xi[j].x, self.xi[j].y],
+            depth_half_turns_per_um: self.depth_half_turns_per_um[j],
+            sigma: self.sigma,
+            eta: self.eta,
+            window: self.window,
+            crossings: self.crossings,
+            area_density: false,
+        }
+    }
 }
 
 /// Sums the scratch terms over every scratch within [`CUTOFF_SIGMAS`]·σ of `x0`, for up to
@@ -352,15 +448,7 @@ pub fn scratch_response_spectral<S: ScratchSet>(
         if let Some(frame) = s.frame() {
             let mut j = 0;
             while j < MAX_SPECTRAL && j < n {
-                let one = ResponseInputs {
-                    x0: [q.x0.x, q.x0.y],
-                    xi: [q.xi[j].x, q.xi[j].y],
-                    depth_half_turns_per_um: q.depth_half_turns_per_um[j],
-                    sigma,
-                    eta: q.eta,
-                    window: q.window,
-                    area_density: false,
-                };
+                let one = q.one(j);
                 // Load, update and store the whole element: rust-gpu lost updates made
                 // in place through a run-time index into this array of structs (the
                 // lavapipe test `backend-spirv/tests/bsdf.rs` caught it).
@@ -372,6 +460,12 @@ pub fn scratch_response_spectral<S: ScratchSet>(
             if q.area_density {
                 rho += area_density_of(&frame, s.width, q.x0, sigma, q.window);
             }
+            if q.crossings == Crossings::Deepest {
+                take_out_overlaps(set, cursor, (&s, &frame), q, &mut terms);
+                if q.area_density {
+                    rho -= overlaps_density(set, cursor, (&s, &frame), q.x0, sigma, q.window);
+                }
+            }
         }
     }
     let mut j = 0;
@@ -382,6 +476,57 @@ pub fn scratch_response_spectral<S: ScratchSet>(
         j += 1;
     }
     terms
+}
+
+/// [`Crossings::Deepest`] in [`scratch_response_spectral`]: takes the overlaps of `a` with
+/// every later scratch of the walk (resumed from `cursor`, just past `a`) out of each
+/// wavelength's `S`.
+fn take_out_overlaps<S: ScratchSet>(
+    set: &S,
+    cursor: NearCursor,
+    a: (&Scratch, &SegmentFrame),
+    q: &SpectralInputs,
+    terms: &mut [ScratchTerms; MAX_SPECTRAL],
+) {
+    let near = (q.x0, CUTOFF_SIGMAS * q.sigma);
+    let mut later = cursor;
+    while let Some(s2) = set.next_near(&mut later, near.0, near.1) {
+        if let Some(frame2) = s2.frame()
+            && may_overlap(a.1, a.0, &frame2, &s2)
+        {
+            let mut j = 0;
+            while j < MAX_SPECTRAL && j < q.count as usize {
+                // Whole-element update, as in the walk.
+                let mut t = terms[j];
+                t.take_out_overlap(a, (&s2, &frame2), &q.one(j), near, true);
+                terms[j] = t;
+                j += 1;
+            }
+        }
+    }
+}
+
+/// [`Crossings::Deepest`] in ρc: the overlaps of `a` with every later scratch of the walk
+/// (resumed from `cursor`, just past `a`), each `∫_O G dA / (2πσ²)`.
+fn overlaps_density<S: ScratchSet>(
+    set: &S,
+    cursor: NearCursor,
+    a: (&Scratch, &SegmentFrame),
+    x0: Vec2,
+    sigma: f32,
+    window: Window,
+) -> f32 {
+    let mut rho = 0.0;
+    let near = (x0, CUTOFF_SIGMAS * sigma);
+    let mut later = cursor;
+    while let Some(s2) = set.next_near(&mut later, near.0, near.1) {
+        if let Some(frame2) = s2.frame()
+            && may_overlap(a.1, a.0, &frame2, &s2)
+        {
+            rho += overlap_density_lanes(a, (&s2, &frame2), [x0.x, x0.y], sigma, window, near);
+        }
+    }
+    rho
 }
 
 /// One segment's share of ρc: `∫∫ G dA / (2πσ²)` over the groove, with the window across
@@ -441,13 +586,23 @@ fn exact_window_area_density_lanes<R: Real>(
 /// Velinov Eq. 17 divides by `A_C = πσ²` instead of by `∫G dA = 2πσ²` and so reports 2 for
 /// a fully scratched window; this is the corrected normalisation (1 when fully covered).
 /// Werner Eq. 9's mask–scratch decomposition counts overlapping scratches twice, and so
-/// does ρc: it can exceed 1 where scratches cross (a documented model limitation).
-pub fn scratch_area_density<S: ScratchSet>(set: &S, x0: Vec2, sigma: f32, window: Window) -> f32 {
+/// does ρc with [`Crossings::Summed`]: it can exceed 1 where scratches cross. With
+/// [`Crossings::Deepest`] each pair's overlap counts once.
+pub fn scratch_area_density<S: ScratchSet>(
+    set: &S,
+    x0: Vec2,
+    sigma: f32,
+    window: Window,
+    crossings: Crossings,
+) -> f32 {
     let mut rho = 0.0;
     let mut cursor = NearCursor::default();
     while let Some(s) = set.next_near(&mut cursor, x0, CUTOFF_SIGMAS * sigma) {
         if let Some(frame) = s.frame() {
             rho += area_density_of(&frame, s.width, x0, sigma, window);
+            if crossings == Crossings::Deepest {
+                rho -= overlaps_density(set, cursor, (&s, &frame), x0, sigma, window);
+            }
         }
     }
     rho

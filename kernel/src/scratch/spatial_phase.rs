@@ -44,7 +44,7 @@ pub(super) fn dot<R: Real>(v: [R; 2], d: Vec2) -> R {
 /// The across-scratch factor `exp(−s_b²/(2σ²) − 2πi s_b ξ₂)`: the coherence window and
 /// phase at the centre line (Werner's frozen window, [`super::window`]).
 #[inline(always)]
-pub fn frozen_across_lanes<R: Real>(s_b: R, xi2: R, sigma: R) -> Cx<R> {
+fn frozen_across_lanes<R: Real>(s_b: R, xi2: R, sigma: R) -> Cx<R> {
     let g = (R::splat(-0.5) * s_b * s_b / (sigma * sigma)).exp();
     math::cis_pi_lanes(R::splat(-2.0) * s_b * xi2).scale(g)
 }

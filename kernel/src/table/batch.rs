@@ -48,6 +48,7 @@ pub fn evaluate_batch<S: ScratchSet, const N: usize>(
         sigma: m.sigma_um,
         eta: m.eta_mode(),
         window: m.window(),
+        crossings: m.crossings(),
         area_density: m.needs_area_density(),
     };
     let terms = scratch_response_batch(set, &inputs, lane_use);

@@ -64,8 +64,10 @@ pub struct TableParams {
     pub sigma_um: f32,
     /// A [`Window`](crate::scratch::Window) as `u32`: the coherence window across a groove.
     pub window: u32,
+    /// A [`Crossings`](crate::scratch::Crossings) as `u32`: how overlapping grooves cut.
+    pub crossings: u32,
     /// Explicit padding.
-    pub pad: [u32; 2],
+    pub pad: [u32; 1],
 }
 
 const _: () = assert!(core::mem::size_of::<TableParams>() == 32);

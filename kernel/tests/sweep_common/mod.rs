@@ -254,7 +254,8 @@ pub fn scratch_query(family: &str, r: &Row) -> ScratchQuery {
         base_gaussian: if blended { 0 } else { r.u("base") },
         sigma_um: r.f("sigma"),
         window: 0,
-        pad: [0; 2],
+        crossings: 0,
+        pad: [0; 1],
     };
     let query = TableQuery {
         wi: r.a3("wi"),
