@@ -351,22 +351,28 @@ fn pair_integral<R: Real>(
             } else {
                 pa
             };
-            if p.n >= 3 {
-                // depth_a − depth_b, linear on p.
-                let (ka, ka0) = ga.depth_plane(sa);
-                let (kb, kb0) = gb.depth_plane(sb);
-                let (k, k0) = (ka - kb, ka0 - kb0);
-                if k == Vec2::ZERO {
-                    // Constant difference: the shallower (b on a tie) over all of p.
-                    sum = if k0 >= 0.0 {
-                        sum + piece_integral(&p, &gb, sb, &q, area)
-                    } else {
-                        sum + piece_integral(&p, &ga, sa, &q, area)
-                    };
+            // depth_a − depth_b = k·q + k0, linear on p: b is taken away where it is ≥ 0
+            // (on a tie too), a where it is < 0. One call site (one copy of the piece's
+            // integral in the code).
+            let (ka, ka0) = ga.depth_plane(sa);
+            let (kb, kb0) = gb.depth_plane(sb);
+            let (k, k0) = (ka - kb, ka0 - kb0);
+            let mut half = 0;
+            while half < 2 && p.n >= 3 {
+                let (g, side, sign) = if half == 0 {
+                    (gb, sb, 1.0)
                 } else {
-                    sum = sum + piece_integral(&p.clip(k, k0), &gb, sb, &q, area);
-                    sum = sum + piece_integral(&p.clip(-k, -k0), &ga, sa, &q, area);
-                }
+                    (ga, sa, -1.0)
+                };
+                let piece = if k != Vec2::ZERO {
+                    p.clip(sign * k, sign * k0)
+                } else if (k0 >= 0.0) == (half == 0) {
+                    p
+                } else {
+                    Poly::EMPTY
+                };
+                sum = sum + piece_integral(&piece, &g, side, &q, area);
+                half += 1;
             }
             j += 1;
         }
@@ -382,8 +388,10 @@ fn pair_integral<R: Real>(
 }
 
 /// `∫_piece G (1 − T_g) e^{−2πi ξ·(p − o)} dp` for the groove `g` cut away on the piece,
-/// on the side `side` of its centre line (a V), or with `area` `∫_piece G dp`.
-#[inline(always)]
+/// on the side `side` of its centre line (a V), or with `area` `∫_piece G dp`. Out of line
+/// on the CPU: one copy of its two Faddeeva paths per lane type, shared by the correction
+/// and the overlap's weight.
+#[cfg_attr(not(target_arch = "spirv"), inline(never))]
 fn piece_integral<R: Real>(p: &Poly, g: &Groove, side: f32, q: &Query<R>, area: bool) -> Cx<R> {
     let mut sum = Cx::splat(0.0, 0.0);
     if p.n < 3 {
