@@ -28,9 +28,10 @@
 //! panels of 4 nodes, each over at most [`PANEL_RADIANS`] of the phase and window change
 //! across the slab. A slab's ends in `u` do not move with `t`, so the long oblique edges of
 //! a shallow-angle overlap cost nothing: quadrature resolves only the groove's width. A
-//! slab no longer along `u` than its widest chord (a sliver, or a steep edge near 90°) is
-//! integrated the other way round: closed form across each chord, Gauss–Legendre along
-//! `u` (there the first moment along `u` would cancel catastrophically).
+//! slab no longer along `u` than its widest chord or than σ/2 (a sliver, a steep edge near
+//! 90°, a small overlap) is integrated the other way round: closed form across each chord,
+//! Gauss–Legendre along `u`. There the first moment's closed form along `u` would lose a
+//! factor ~(σ/h)² of precision to cancellation (catastrophically for slivers).
 //!
 //! Measured against the heightfield reference (`testkit/tests/heightfield_reference.rs`,
 //! 24 crossing cases at 90°, 45° and 10°): worst median 8.7e-7, worst 4.7e-5 relative, for
@@ -449,7 +450,11 @@ fn piece_integral<R: Real>(p: &Poly, g: &Groove, side: f32, q: &Query<R>, area: 
             let mut term = 0;
             while term < terms {
                 let (w, nu) = if term == 0 { (w0, c(0.0)) } else { (w1, nu1) };
-                let s = if 2.0 * slab.h <= slab.d + math::abs(slab.d1) * slab.h {
+                // Along u only for slabs longer than their widest chord and than σ/2:
+                // there the first moment's closed form loses at most a factor ~(σ/h)² of
+                // f32 precision (16 here); shorter slabs go across.
+                let long = math::max(slab.d + math::abs(slab.d1) * slab.h, 0.5 * q.sigma);
+                let s = if 2.0 * slab.h <= long {
                     slab_integral_across(&slab, g, xi1, xi2, nu, p_t, p_b, q)
                 } else {
                     slab_integral(&slab, g, xi1, xi2, nu, p_t, p_b, q)
@@ -579,11 +584,11 @@ fn slab_integral<R: Real>(
     sum
 }
 
-/// [`slab_integral`] for a slab no longer along `u` than its widest chord across (a sliver
-/// or a steep edge): closed form across each chord (a Gaussian-windowed interval for the
-/// exact window, a sinc for the frozen one), Gauss–Legendre along `u`. No Jacobian, so no
-/// moment: along-`u` closed forms lose digits in the moment where `h ≪ σ` and the lines
-/// are steep.
+/// [`slab_integral`] for a slab no longer along `u` than its widest chord across or than
+/// σ/2 (a sliver, a steep edge, a small overlap): closed form across each chord (a
+/// Gaussian-windowed interval for the exact window, a sinc for the frozen one),
+/// Gauss–Legendre along `u`. No Jacobian, so no moment: the along-`u` moment's closed form
+/// loses a factor ~(σ/h)² of precision to cancellation.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn slab_integral_across<R: Real>(
