@@ -18,7 +18,7 @@ use scratchwave_cpu::{Backend, evaluate_table, evaluate_table_counted};
 use scratchwave_host::generate::{HalfLength, ProfileMix, ScratchRecipe, Uniform};
 use scratchwave_host::rng::SplitMix64;
 use scratchwave_kernel::material::{FresnelAngle, Material};
-use scratchwave_kernel::scratch::{DepthTerm, EtaMode, Scratch, Window};
+use scratchwave_kernel::scratch::{Crossings, DepthTerm, EtaMode, Scratch, Window};
 use scratchwave_kernel::table::{Model, TableParams, TableQuery};
 use ulp::{UlpStats, upper};
 
@@ -42,6 +42,19 @@ const MAX_ULP: u32 = 0;
 const P99_ULP: u32 = 16;
 #[cfg(feature = "portable-math")]
 const P99_ULP: u32 = 0;
+
+/// The bounds (99th percentile, worst) with crossings cut once (issue #21). Each crossing
+/// pair's correction is a Gauss–Legendre sum of oscillating terms over its overlap, which
+/// amplifies the lane and scalar `exp`/`sin`/`cos` last-bit differences where the terms
+/// nearly cancel: measured p99 329 ULP, worst 4 747 (400 random scratches, 6 000 queries;
+/// about 4e-5 and 6e-4 relative). With `portable-math` the arithmetic is the same and the
+/// values are not quite bit-identical (p99 8, worst 561): the lanes clip each overlap to
+/// one square around their shared walk disk, the scalar path to its own, and the strips
+/// between (where the window is below e^{−18}) differ.
+#[cfg(not(feature = "portable-math"))]
+const DEEPEST_ULP: (u32, u32) = (512, 8192);
+#[cfg(feature = "portable-math")]
+const DEEPEST_ULP: (u32, u32) = (16, 1024);
 
 const SIGMA: f32 = 10.0;
 
@@ -143,6 +156,14 @@ fn cases() -> Vec<(&'static str, TableParams)> {
                 )
             },
         ),
+        (
+            "werner, exact window, deepest crossings",
+            TableParams {
+                window: Window::Exact as u32,
+                crossings: Crossings::Deepest as u32,
+                ..p(Model::Werner, EtaMode::Finite, 0, DepthTerm::Exact)
+            },
+        ),
     ]
 }
 
@@ -168,7 +189,12 @@ fn scratch_models_in_lanes_are_within_a_few_ulp_of_scalar() {
             used.candidates as f64 / used.batches.max(1) as f64,
             100.0 * utilisation
         );
-        let worst = st.assert_within(name, P99_ULP, MAX_ULP);
+        let (p99, max) = if params.crossings == Crossings::Deepest as u32 {
+            DEEPEST_ULP
+        } else {
+            (P99_ULP, MAX_ULP)
+        };
+        let worst = st.assert_within(name, p99, max);
         assert_eq!(used.batches, q.len().div_ceil(8) as u64);
         worst_all = worst_all.max(worst);
     }

@@ -133,3 +133,25 @@ def test_exact_window_option():
         sw.Material({"model": "velinov", "sigma_um": 10, "options": {"window": "exact"}})
     with pytest.raises(sw.InputError, match=r"material\.options\.window"):
         sw.Material({**spec, "options": {"window": "wide"}})
+
+
+def test_deepest_crossings_option():
+    # Two 3 µm rectangular grooves crossing at 90° 2 µm from the shading point: Werner's
+    # sum cuts their overlap twice, "deepest" once (docs/exact_window.md), which moves the
+    # mirror direction's value by a few per cent and must change every direction here.
+    cross = [{"p0": [-500, 0], "p1": [500, 0], "width": 3, "depth": 0.2},
+             {"p0": [2, -500], "p1": [2, 500], "width": 3, "depth": 0.1}]
+    spec = {"model": "werner", "sigma_um": 10, "material": {"F": 0.9}, "scratches": cross}
+    summed = sw.Material(spec)
+    same = sw.Material({**spec, "options": {"crossings": "summed"}})
+    deepest = sw.Material({**spec, "options": {"crossings": "deepest"}})
+    wi = np.array([[0.0, 0.0, 1.0]] * 3)
+    wo = np.array([[0.0, 0.0, 1.0], [0.05, 0.05, 0.9975], [0.1, -0.05, 0.99373]])
+    a, b = summed.eval(wo, wi), deepest.eval(wo, wi)
+    np.testing.assert_array_equal(bits(a), bits(same.eval(wo, wi)))
+    assert np.all(np.isfinite(b)) and np.all(b > 0)
+    assert np.min(np.abs(a - b) / b) > 1e-3
+    with pytest.raises(sw.InputError, match=r"material\.options\.crossings"):
+        sw.Material({"model": "velinov", "sigma_um": 10, "options": {"crossings": "deepest"}})
+    with pytest.raises(sw.InputError, match=r"material\.options\.crossings"):
+        sw.Material({**spec, "options": {"crossings": "once"}})

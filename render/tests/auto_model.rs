@@ -169,3 +169,29 @@ fn the_exact_window_belongs_to_the_coherent_models() {
     ));
     assert!(e.contains("materials.plate.options.window"), "{e}");
 }
+
+#[test]
+fn deepest_crossings_belong_to_the_coherent_models() {
+    let deepest = json!({"options": {"crossings": "deepest"}});
+    for model in ["velinov", "auto"] {
+        let e = read_err(&scene(json!(model), deepest.clone()));
+        assert!(
+            e.contains("materials.plate.options.crossings"),
+            "{model}: {e}"
+        );
+        assert!(e.contains("werner_blended"), "{model}: {e}");
+    }
+    for model in ["werner", "werner_blended"] {
+        let s = read(&scene(json!(model), deepest.clone())).unwrap();
+        assert_eq!(
+            s.materials[0].shade.table.crossings,
+            scratchwave_kernel::scratch::Crossings::Deepest as u32,
+            "{model}"
+        );
+    }
+    let e = read_err(&scene(
+        json!("werner"),
+        json!({"options": {"crossings": "once"}}),
+    ));
+    assert!(e.contains("materials.plate.options.crossings"), "{e}");
+}

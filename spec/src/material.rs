@@ -9,7 +9,7 @@ use scratchwave_kernel::lights::LightMethod;
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::render::shading::{BaseKind, SceneModel, ShadeMaterial};
 use scratchwave_kernel::scratch::Scratch;
-use scratchwave_kernel::scratch::{DepthTerm, Window};
+use scratchwave_kernel::scratch::{Crossings, DepthTerm, Window};
 use scratchwave_kernel::table::{Model, TableParams};
 use serde_json::Value;
 use std::path::Path;
@@ -159,6 +159,14 @@ pub fn scene_material(
                  \"werner_blended\"): the incoherent model's footprint and area-light \
                  closed forms take the frozen window (a table spec may use it with \
                  \"velinov\")",
+            ));
+        }
+        // `auto` may choose the incoherent model, whose sum keeps crossings summed.
+        if shade.table.crossings == Crossings::Deepest as u32 && sm == SceneModel::Auto {
+            return Err(SpecError::field(
+                format!("{path}.crossings"),
+                "\"deepest\" is for the coherent models (\"werner\", \"werner_blended\"): \
+                 \"auto\" may choose Velinov's incoherent sum, which keeps crossings summed",
             ));
         }
     }

@@ -13,8 +13,12 @@
 //! - `docs/exact_window/window_cost.svg`: the cost of `window: exact` per query relative to
 //!   `frozen`, scalar and SIMD on one thread, by scratches in the window (measured here, in
 //!   one run: the best of several timings of each);
+//! - `docs/exact_window/crossing_cost.svg`: the cost of `crossings: deepest` per query
+//!   relative to `summed` (both with the exact window), by crossing pairs in the window, and
+//!   the time per crossing pair (measured here, in one run).
 //!
-//! The window chart also carries the kernel's `window: exact` (pooled over the distances).
+//! The window chart also carries the kernel's `window: exact` (pooled over the distances),
+//! the crossing chart the kernel's `window: exact, crossings: deepest`.
 //! Prints the points as tables. Errors are `|value/exact − 1|` over the directions at
 //! least 1e-3 of the case's peak, pooled over the cases of a point (profiles, incidences,
 //! depths); each point shows their median, 90th percentile and maximum.
@@ -22,7 +26,7 @@
 use scratchwave_benches::svg::{Extras, HLine, Series, loglog_with};
 use scratchwave_benches::{queries_near_specular, scratches_in_window, werner_window_params};
 use scratchwave_cpu::{Backend, evaluate_table};
-use scratchwave_kernel::scratch::Window;
+use scratchwave_kernel::scratch::{Crossings, Profile, Scratch, Window};
 use scratchwave_kernel::table::TableParams;
 use scratchwave_testkit::heightfield::{Case, Golden, Kind, quantile, rel_errors};
 use std::process::ExitCode;
@@ -166,11 +170,17 @@ fn crossing_chart(golden: &Golden) -> String {
     let mut angles: Vec<f64> = crossings.iter().map(|c| angle(c)).collect();
     angles.sort_by(|a, b| b.total_cmp(a));
     angles.dedup();
-    let variants: [(&str, Option<&str>); 3] = [
+    let variants: [(&str, Option<&str>); 4] = [
         ("kernel: frozen, summed", None),
         ("exact window, summed", Some("exact_summed")),
         ("frozen window, deepest cut", Some("frozen_deepest")),
+        ("kernel: exact window, deepest cut", Some("kernel")),
     ];
+    let deepest = TableParams {
+        window: Window::Exact as u32,
+        crossings: Crossings::Deepest as u32,
+        ..golden.params
+    };
     let mut series: Vec<Series> = variants
         .iter()
         .zip(COLORS)
@@ -186,6 +196,7 @@ fn crossing_chart(golden: &Golden) -> String {
                         .filter(|c| angle(c) == a)
                         .flat_map(|c| match variant {
                             None => errors(c, &c.kernel(&golden.params, golden.material)),
+                            Some("kernel") => errors(c, &c.kernel(&deepest, golden.material)),
                             Some(v) => errors(c, c.variant(v).unwrap_or(&[])),
                         })
                         .collect();
@@ -226,6 +237,17 @@ fn best_time(repeats: usize, mut run: impl FnMut() -> Vec<f32>) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// The best of three rounds of two timings, interleaved so that a change in the machine's
+/// load touches both.
+fn interleaved(mut a: impl FnMut() -> f64, mut b: impl FnMut() -> f64) -> (f64, f64) {
+    let (mut ta, mut tb) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..3 {
+        ta = ta.min(a());
+        tb = tb.min(b());
+    }
+    (ta, tb)
+}
+
 /// `window: exact` per query over `frozen` (the criterion group `brdf_window`'s workload:
 /// Werner, σ = 10 µm, 4 096 queries near the specular direction), by scratches in the window.
 fn cost_chart() -> String {
@@ -253,12 +275,7 @@ fn cost_chart() -> String {
                     evaluate_table(*backend, &params, &scratches, &queries)
                 })
             };
-            // Interleaved, so that a change in the machine's load touches both.
-            let (mut frozen, mut exact) = (f64::INFINITY, f64::INFINITY);
-            for _ in 0..3 {
-                frozen = frozen.min(time(Window::Frozen));
-                exact = exact.min(time(Window::Exact));
-            }
+            let (frozen, exact) = interleaved(|| time(Window::Frozen), || time(Window::Exact));
             let ratio = exact / frozen;
             s.points.push((n as f64, ratio, ratio, ratio));
         }
@@ -294,6 +311,106 @@ fn cost_chart() -> String {
     )
 }
 
+/// `k` long grooves along x and `k` along y, 9 µm apart, centred on the queries' shading
+/// points: `k²` crossing pairs in the window (σ = 10 µm), rect and V grooves alternating,
+/// depths 0.2 and 0.1 µm.
+fn crossing_grid(k: usize) -> Vec<Scratch> {
+    let mut out = Vec::new();
+    for i in 0..k {
+        let c = (i as f32 - 0.5 * (k as f32 - 1.0)) * 9.0;
+        let profile = if i % 2 == 0 {
+            Profile::Rect
+        } else {
+            Profile::Triangle
+        } as u32;
+        for (center, tangent, depth) in [([0.0, c], [1.0, 0.0], 0.2), ([c, 0.0], [0.0, 1.0], 0.1)] {
+            out.push(Scratch {
+                center,
+                tangent,
+                half_len: 500.0,
+                width: 3.0,
+                depth,
+                profile,
+            });
+        }
+    }
+    out
+}
+
+/// `crossings: deepest` per query over `summed` (both with the exact window, the model the
+/// reference integrates), by crossing pairs in the window; also prints the time per pair.
+fn crossing_cost_chart() -> String {
+    let queries = queries_near_specular(1024, 11);
+    let backends = [
+        ("scalar", Backend::Scalar),
+        ("SIMD, one thread", Backend::SimdSingleThread),
+    ];
+    let mut series: Vec<Series> = backends
+        .iter()
+        .zip(COLORS)
+        .map(|((label, _), color)| Series {
+            label: format!("{label}: deepest / summed"),
+            color: color.into(),
+            line: true,
+            points: Vec::new(),
+        })
+        .collect();
+    let mut per_pair = Vec::new();
+    for k in [1usize, 3, 10] {
+        let scratches = crossing_grid(k);
+        for ((label, backend), s) in backends.iter().zip(&mut series) {
+            let time = |crossings: Crossings| {
+                let params = TableParams {
+                    crossings: crossings as u32,
+                    ..werner_window_params(Window::Exact)
+                };
+                best_time(5, || {
+                    evaluate_table(*backend, &params, &scratches, &queries)
+                })
+            };
+            let (summed, deepest) =
+                interleaved(|| time(Crossings::Summed), || time(Crossings::Deepest));
+            let pairs = (k * k) as f64;
+            let ratio = deepest / summed;
+            s.points.push((pairs, ratio, ratio, ratio));
+            let us = (deepest - summed) / (queries.len() as f64 * pairs) * 1e6;
+            per_pair.push((label.to_string(), k * k, summed, deepest, us));
+        }
+    }
+    println!(
+        "\nCost of crossings: deepest per query relative to summed (Werner, exact window, 1 024 queries)"
+    );
+    println!(
+        "| backend | crossing pairs in window | summed µs/query | deepest µs/query | deepest / summed | µs per pair and query |\n|---|---:|---:|---:|---:|---:|"
+    );
+    for (label, pairs, summed, deepest, us) in &per_pair {
+        let n = queries.len() as f64;
+        println!(
+            "| {label} | {pairs} | {:.2} | {:.2} | {:.2} | {us:.2} |",
+            summed / n * 1e6,
+            deepest / n * 1e6,
+            deepest / summed
+        );
+    }
+    let extras = Extras {
+        notes: vec![
+            "Werner, exact window, σ = 10 µm,".into(),
+            "k × k crossing 3 µm grooves 9 µm apart,".into(),
+            "1 024 queries; best of 15 timings".into(),
+        ],
+        whiskers: false,
+        y_headroom: 1.5,
+        ..Extras::default()
+    };
+    loglog_with(
+        "Cost of cutting crossings once per query",
+        "crossing pairs in the coherence window",
+        "time, deepest / summed",
+        &series,
+        &extras,
+    )
+}
+
 fn main() -> ExitCode {
     let golden = match Golden::load() {
         Ok(g) => g,
@@ -308,6 +425,7 @@ fn main() -> ExitCode {
         ("window_error.svg", window_chart(&golden)),
         ("crossing_error.svg", crossing_chart(&golden)),
         ("window_cost.svg", cost_chart()),
+        ("crossing_cost.svg", crossing_cost_chart()),
     ];
     if let Err(e) = std::fs::create_dir_all(&dir) {
         eprintln!("error: creating {dir}: {e}");
