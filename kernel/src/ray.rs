@@ -295,14 +295,12 @@ mod tests {
 
     #[test]
     fn hit_reports_t_barycentrics_and_normal() {
-        let h = intersect_triangle(&Ray::new([0.25, 0.5, 0.0], [0.0, 0.0, 1.0]), &TRI, 10.0)
-            .expect("hit");
-        assert_eq!((h.t, h.u, h.v), (1.0, 0.25, 0.5));
-        assert_eq!(h.ng, [0.0, 0.0, 1.0]);
+        let fields = |h: TriangleHit| (h.t, h.u, h.v, h.ng);
+        let front = intersect_triangle(&Ray::new([0.25, 0.5, 0.0], [0.0, 0.0, 1.0]), &TRI, 10.0);
+        assert_eq!(front.map(fields), Some((1.0, 0.25, 0.5, [0.0, 0.0, 1.0])));
         // Back face hits too, same normal.
-        let h = intersect_triangle(&Ray::new([0.25, 0.5, 2.0], [0.0, 0.0, -1.0]), &TRI, 10.0)
-            .expect("back-face hit");
-        assert_eq!((h.t, h.u, h.v, h.ng), (1.0, 0.25, 0.5, [0.0, 0.0, 1.0]));
+        let back = intersect_triangle(&Ray::new([0.25, 0.5, 2.0], [0.0, 0.0, -1.0]), &TRI, 10.0);
+        assert_eq!(back.map(fields), Some((1.0, 0.25, 0.5, [0.0, 0.0, 1.0])));
     }
 
     #[test]
