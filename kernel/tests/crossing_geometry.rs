@@ -38,10 +38,10 @@ fn corrections(angle: f32, profile: u32, window: Window, depths: (f32, f32)) -> 
             let xi = [wo[0] / LAMBDA_UM, wo[1] / LAMBDA_UM];
             let depth = 2.0 * (1.0 + wo[2]) / LAMBDA_UM;
             let c = crossing_correction_lanes(
-                &a,
-                &fa,
-                &b,
-                &fb,
+                a,
+                fa,
+                b,
+                fb,
                 [0.0f32, 0.0],
                 xi,
                 depth,
@@ -125,10 +125,10 @@ fn apart_grooves_have_no_correction() {
     let (fa, fb) = (a.frame().unwrap(), b.frame().unwrap());
     for window in [Window::Frozen, Window::Exact] {
         let c = crossing_correction_lanes(
-            &a,
-            &fa,
-            &b,
-            &fb,
+            a,
+            fa,
+            b,
+            fb,
             [0.0f32, 0.0],
             [1.0, 0.5],
             7.0,
@@ -137,7 +137,7 @@ fn apart_grooves_have_no_correction() {
             NEAR,
         );
         assert_eq!((c.re, c.im), (0.0, 0.0));
-        let w = crossing_overlap_weight_lanes(&a, &fa, &b, &fb, [0.0f32, 0.0], SIGMA, window, NEAR);
+        let w = crossing_overlap_weight_lanes(a, fa, b, fb, [0.0f32, 0.0], SIGMA, window, NEAR);
         assert_eq!(w, 0.0);
     }
 }
@@ -150,10 +150,10 @@ fn order_free_for_unequal_depths_and_the_exact_window() {
         let b = groove(65.0, 0.1, profile);
         let (fa, fb) = (a.frame().unwrap(), b.frame().unwrap());
         let ab = crossing_correction_lanes(
-            &a,
-            &fa,
-            &b,
-            &fb,
+            a,
+            fa,
+            b,
+            fb,
             [0.0f32, 0.0],
             [0.8, -0.3],
             6.0,
@@ -162,10 +162,10 @@ fn order_free_for_unequal_depths_and_the_exact_window() {
             NEAR,
         );
         let ba = crossing_correction_lanes(
-            &b,
-            &fb,
-            &a,
-            &fa,
+            b,
+            fb,
+            a,
+            fa,
             [0.0f32, 0.0],
             [0.8, -0.3],
             6.0,
@@ -187,8 +187,7 @@ fn overlap_weight_of_a_centred_square() {
     a.center = [0.0, 0.0];
     b.center = [0.0, 0.0];
     let (fa, fb) = (a.frame().unwrap(), b.frame().unwrap());
-    let w =
-        crossing_overlap_weight_lanes(&a, &fa, &b, &fb, [0.0f32, 0.0], SIGMA, Window::Exact, NEAR);
+    let w = crossing_overlap_weight_lanes(a, fa, b, fb, [0.0f32, 0.0], SIGMA, Window::Exact, NEAR);
     // ∫_{−1.5}^{1.5} e^{−x²/200} dx by Simpson's rule in f64.
     let n = 2000;
     let h = 3.0 / n as f64;

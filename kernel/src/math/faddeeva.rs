@@ -69,55 +69,77 @@ fn crecip<R: Real>(z: Cx<R>) -> Cx<R> {
 /// real axis' upper side; callers in this crate only pass `Im z ≥ 0`). |w| ≤ 1 there.
 #[inline]
 pub fn faddeeva(z: C32) -> C32 {
-    faddeeva_chains([Cx::from(z)])[0].into()
+    faddeeva_lanes(Cx::from(z)).into()
 }
 
-/// [`faddeeva`] for any [`Real`].
-#[inline(always)]
+/// [`faddeeva`] for any [`Real`]. Out of line on SPIR-V (as [`faddeeva_pair`]).
+#[cfg_attr(not(target_arch = "spirv"), inline(always))]
+#[cfg_attr(target_arch = "spirv", inline(never))]
 pub fn faddeeva_lanes<R: Real>(z: Cx<R>) -> Cx<R> {
-    faddeeva_chains([z])[0]
+    let mut chain = Chain::new(z);
+    horner(|coeff| chain.step(coeff));
+    chain.value()
 }
 
 /// `(w(a), w(b))`: two Horner chains advanced in the same loop, so that their latencies
-/// overlap.
-#[inline(always)]
+/// overlap. Out of line on SPIR-V: one copy of the 31 Horner steps in the shader
+/// (every walk of every entry point calls it; the CPU keeps it inline in each lane type).
+#[cfg_attr(not(target_arch = "spirv"), inline(always))]
+#[cfg_attr(target_arch = "spirv", inline(never))]
 pub fn faddeeva_pair<R: Real>(a: Cx<R>, b: Cx<R>) -> (Cx<R>, Cx<R>) {
-    let w = faddeeva_chains([a, b]);
-    (w[0], w[1])
+    let (mut ca, mut cb) = (Chain::new(a), Chain::new(b));
+    horner(|coeff| {
+        ca.step(coeff);
+        cb.step(coeff);
+    });
+    (ca.value(), cb.value())
 }
 
-/// `w(z)` for `N` independent arguments at once: the one formula behind [`faddeeva`],
-/// [`faddeeva_lanes`] and [`faddeeva_pair`].
-#[inline(always)]
-fn faddeeva_chains<R: Real, const N: usize>(z: [Cx<R>; N]) -> [Cx<R>; N] {
-    let c = R::splat;
-    let zero = Cx::splat(0.0, 0.0);
-    let mut q = [zero; N];
-    let mut big_z = [zero; N];
-    let mut p = [Cx::splat(COEFFS[0], 0.0); N];
-    let mut l = 0;
-    while l < N {
-        let zl = Cx::new(z[l].re, super::max(z[l].im, c(0.0)));
+/// One argument's evaluation of `w`: `q = 1/(L − iz)`, `Z = (L + iz) q` and the Horner
+/// chain `p(Z)`; the one formula behind [`faddeeva`], [`faddeeva_lanes`] and
+/// [`faddeeva_pair`].
+#[derive(Clone, Copy)]
+struct Chain<R: Real> {
+    q: Cx<R>,
+    big_z: Cx<R>,
+    p: Cx<R>,
+}
+
+impl<R: Real> Chain<R> {
+    #[inline(always)]
+    fn new(z: Cx<R>) -> Self {
+        let zl = Cx::new(z.re, super::max(z.im, R::splat(0.0)));
         let iz = zl.mul_i();
         // q = 1/(L − iz); |L − iz| ≥ L so q never blows up, and q² underflows benignly.
-        q[l] = crecip(Cx::new(c(L) - iz.re, -iz.im));
-        big_z[l] = Cx::new(c(L) + iz.re, iz.im) * q[l];
-        l += 1;
-    }
-    let mut k = 1;
-    while k < 32 {
-        let mut l = 0;
-        while l < N {
-            p[l] = p[l] * big_z[l] + Cx::splat(COEFFS[k], 0.0);
-            l += 1;
+        let q = crecip(Cx::new(R::splat(L) - iz.re, -iz.im));
+        Chain {
+            q,
+            big_z: Cx::new(R::splat(L) + iz.re, iz.im) * q,
+            p: Cx::splat(COEFFS[0], 0.0),
         }
-        k += 1;
     }
-    let mut out = [zero; N];
-    let mut l = 0;
-    while l < N {
-        out[l] = (p[l] * q[l] * q[l]).scale(c(2.0)) + q[l].scale(c(super::FRAC_1_SQRT_PI));
-        l += 1;
+
+    /// One Horner step: `p ← p Z + coeff`.
+    #[inline(always)]
+    fn step(&mut self, coeff: f32) {
+        self.p = self.p * self.big_z + Cx::splat(coeff, 0.0);
     }
-    out
+
+    #[inline(always)]
+    fn value(self) -> Cx<R> {
+        (self.p * self.q * self.q).scale(R::splat(2.0))
+            + self.q.scale(R::splat(super::FRAC_1_SQRT_PI))
+    }
+}
+
+/// `step(COEFFS[k])` for `k = 1, …, 31` in order. Written out with constant indices: an
+/// index that can be out of range would leave a panic path, and on SPIR-V rust-gpu
+/// inlines every function that may panic at each of its call sites (so that the abort
+/// reaches the entry point), which would copy the whole Faddeeva path into every caller.
+#[inline(always)]
+fn horner(mut step: impl FnMut(f32)) {
+    macro_rules! steps {
+        ($($k:literal)*) => { $( step(COEFFS[$k]); )* };
+    }
+    steps!(1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30 31);
 }

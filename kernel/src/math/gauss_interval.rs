@@ -219,18 +219,21 @@ fn gauss_legendre<R: Real, const REDUCED: bool>(mid: R, half: R, sigma: R, nu: R
     let c = R::splat;
     let inv2s2 = c(0.5) / (sigma * sigma);
     let mut acc = Cx::splat(0.0, 0.0);
-    let mut i = 0;
-    while i < 4 {
-        let d = half * c(GL_X[i]);
+    // The node pairs ±x_i by constant index (no panic path; see `faddeeva::horner`).
+    let mut pair = |x: f32, w: f32| {
+        let d = half * c(x);
         let mut j = 0;
         while j < 2 {
             let (u, off) = if j == 0 { (mid - d, -d) } else { (mid + d, d) };
-            let g = (-u * u * inv2s2).exp() * c(GL_W[i]);
+            let g = (-u * u * inv2s2).exp() * c(w);
             acc = acc + cis_pi_lanes(c(-2.0) * nu * off).scale(g);
             j += 1;
         }
-        i += 1;
-    }
+    };
+    pair(GL_X[0], GL_W[0]);
+    pair(GL_X[1], GL_W[1]);
+    pair(GL_X[2], GL_W[2]);
+    pair(GL_X[3], GL_W[3]);
     if REDUCED {
         acc.scale(half)
     } else {

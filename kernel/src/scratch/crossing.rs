@@ -71,6 +71,49 @@ pub const MAX_PANELS: f32 = 256.0;
 /// the walk's square and 3 more lines.
 const MAX_VERTS: usize = 16;
 
+/// `a[i]`, 0 past the end. No index here may panic: on SPIR-V rust-gpu inlines a function
+/// that may panic at every call site (its abort must reach the entry point), so one
+/// bounds check would copy the whole pair integral into every walk of every entry point.
+/// The shader's form selects among constant indices, branch-free (rust-gpu cannot make a
+/// slice of a local array, and MIR keeps a guarded index's check).
+#[inline(always)]
+fn load(a: &[f32; MAX_VERTS], i: usize) -> f32 {
+    #[cfg(target_arch = "spirv")]
+    {
+        let mut x = 0.0;
+        macro_rules! pick {
+            ($($k:literal)*) => { $( x = if i == $k { a[$k] } else { x }; )* };
+        }
+        pick!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);
+        x
+    }
+    #[cfg(not(target_arch = "spirv"))]
+    {
+        match a.get(i) {
+            Some(x) => *x,
+            None => 0.0,
+        }
+    }
+}
+
+/// `a[i] = x`, nothing past the end (panic-free, as [`load`]).
+#[inline(always)]
+fn store(a: &mut [f32; MAX_VERTS], i: usize, x: f32) {
+    #[cfg(target_arch = "spirv")]
+    {
+        macro_rules! put {
+            ($($k:literal)*) => { $( a[$k] = if i == $k { x } else { a[$k] }; )* };
+        }
+        put!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15);
+    }
+    #[cfg(not(target_arch = "spirv"))]
+    {
+        if let Some(slot) = a.get_mut(i) {
+            *slot = x;
+        }
+    }
+}
+
 /// A convex polygon in coordinates relative to the pair's origin (µm).
 #[derive(Clone, Copy)]
 struct Poly {
@@ -88,17 +131,19 @@ impl Poly {
 
     fn push(&mut self, p: Vec2) {
         if self.n < MAX_VERTS {
-            self.x[self.n] = p.x;
-            self.y[self.n] = p.y;
+            store(&mut self.x, self.n, p.x);
+            store(&mut self.y, self.n, p.y);
             self.n += 1;
         }
     }
 
     fn at(&self, i: usize) -> Vec2 {
-        Vec2::new(self.x[i], self.y[i])
+        Vec2::new(load(&self.x, i), load(&self.y, i))
     }
 
-    /// The part where `a·p + a0 ≥ 0` (Sutherland–Hodgman, one line).
+    /// The part where `a·p + a0 ≥ 0` (Sutherland–Hodgman, one line). Out of line on
+    /// SPIR-V: one copy for the dozen clips of a pair.
+    #[cfg_attr(target_arch = "spirv", inline(never))]
     fn clip(&self, a: Vec2, a0: f32) -> Poly {
         let mut out = Poly::EMPTY;
         let mut i = 0;
@@ -171,8 +216,14 @@ impl Groove {
     }
 }
 
-/// The four corners' signs, in order around a rectangle or parallelogram.
-const CORNERS: [(f32, f32); 4] = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+/// The signs of corner `i` (0–3), in order around a rectangle or parallelogram:
+/// (−,−), (+,−), (+,+), (−,+).
+#[inline(always)]
+fn corner(i: usize) -> (f32, f32) {
+    let sa = if i == 1 || i == 2 { 1.0 } else { -1.0 };
+    let sb = if i >= 2 { 1.0 } else { -1.0 };
+    (sa, sb)
+}
 
 /// The overlap of the two grooves' rectangles, relative to the returned origin: the
 /// crossing of the centre lines where the strips' parallelogram is shorter than segment
@@ -194,7 +245,7 @@ fn overlap(a: &Scratch, fa: &SegmentFrame, b: &Scratch, fb: &SegmentFrame) -> (V
         let den = ba.perp_dot(bb);
         let mut i = 0;
         while i < 4 {
-            let (sa, sb) = CORNERS[i];
+            let (sa, sb) = corner(i);
             let (r1, r2) = (sa * ga.half_w - ga.off_b, sb * gb.half_w - gb.off_b);
             p.push(Vec2::new(r1 * bb.y - r2 * ba.y, ba.x * r2 - bb.x * r1) / den);
             i += 1;
@@ -216,7 +267,7 @@ fn overlap(a: &Scratch, fa: &SegmentFrame, b: &Scratch, fb: &SegmentFrame) -> (V
     let half = 0.5 * (hi - lo);
     let mut i = 0;
     while i < 4 {
-        let (sa, sb) = CORNERS[i];
+        let (sa, sb) = corner(i);
         p.push((sa * half) * ga.t + (sb * ga.half_w - ga.off_b) * ga.b);
         i += 1;
     }
@@ -240,15 +291,18 @@ struct Query<R> {
 /// the walk gathered its scratches from, which holds every lane's window where it matters).
 /// Zero when they do not overlap. Subtract it from `S`.
 ///
-/// Out of line on the CPU (as the exact window's terms): it holds two more Faddeeva paths,
-/// which inlined into every SIMD batch would multiply the CPU crates' build time.
-#[cfg_attr(not(target_arch = "spirv"), inline(never))]
+/// Out of line: on the CPU (as the exact window's terms) it holds two more Faddeeva paths,
+/// which inlined into every SIMD batch would multiply the CPU crates' build time; on SPIR-V
+/// it would be copied into every walk of every entry point. The records come by value, as
+/// rust-gpu must inline a function given a pointer into a storage buffer; nothing in its
+/// body may panic (its arrays are read through the module's panic-free `load` and `store`).
+#[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub fn crossing_correction_lanes<R: Real>(
-    a: &Scratch,
-    fa: &SegmentFrame,
-    b: &Scratch,
-    fb: &SegmentFrame,
+    a: Scratch,
+    fa: SegmentFrame,
+    b: Scratch,
+    fb: SegmentFrame,
     x0: [R; 2],
     xi: [R; 2],
     half_turns_per_um: R,
@@ -257,19 +311,19 @@ pub fn crossing_correction_lanes<R: Real>(
     near: (Vec2, f32),
 ) -> Cx<R> {
     let q = (x0, xi, half_turns_per_um);
-    pair_integral(a, fa, b, fb, q, sigma, window, near, false)
+    pair_integral(&a, &fa, &b, &fb, q, sigma, window, near, false)
 }
 
 /// `∫_O G dA` over the pair's overlap (the window and `near` as in
 /// [`crossing_correction_lanes`]): what the overlap adds twice to the scratch area density
-/// ρc. Out of line on the CPU.
-#[cfg_attr(not(target_arch = "spirv"), inline(never))]
+/// ρc. Out of line (as [`crossing_correction_lanes`]).
+#[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub fn crossing_overlap_weight_lanes<R: Real>(
-    a: &Scratch,
-    fa: &SegmentFrame,
-    b: &Scratch,
-    fb: &SegmentFrame,
+    a: Scratch,
+    fa: SegmentFrame,
+    b: Scratch,
+    fb: SegmentFrame,
     x0: [R; 2],
     sigma: f32,
     window: Window,
@@ -277,10 +331,10 @@ pub fn crossing_overlap_weight_lanes<R: Real>(
 ) -> R {
     let zero = R::splat(0.0);
     pair_integral(
-        a,
-        fa,
-        b,
-        fb,
+        &a,
+        &fa,
+        &b,
+        &fb,
         (x0, [zero; 2], zero),
         sigma,
         window,
@@ -389,10 +443,10 @@ fn pair_integral<R: Real>(
 }
 
 /// `∫_piece G (1 − T_g) e^{−2πi ξ·(p − o)} dp` for the groove `g` cut away on the piece,
-/// on the side `side` of its centre line (a V), or with `area` `∫_piece G dp`. Out of line
-/// on the CPU: one copy of its two Faddeeva paths per lane type, shared by the correction
-/// and the overlap's weight.
-#[cfg_attr(not(target_arch = "spirv"), inline(never))]
+/// on the side `side` of its centre line (a V), or with `area` `∫_piece G dp`. Out of line:
+/// one copy of its two Faddeeva paths per lane type (one in the shader), shared by the
+/// correction and the overlap's weight.
+#[inline(never)]
 fn piece_integral<R: Real>(p: &Poly, g: &Groove, side: f32, q: &Query<R>, area: bool) -> Cx<R> {
     let mut sum = Cx::splat(0.0, 0.0);
     if p.n < 3 {
@@ -405,15 +459,17 @@ fn piece_integral<R: Real>(p: &Poly, g: &Groove, side: f32, q: &Query<R>, area: 
     let mut i = 0;
     while i < p.n {
         let pt = p.at(i);
-        u[i] = pt.dot(g.t);
-        v[i] = pt.dot(g.b);
+        let ui = pt.dot(g.t);
+        store(&mut u, i, ui);
+        store(&mut v, i, pt.dot(g.b));
         // Insertion into the sorted u's.
         let mut j = i;
-        while j > 0 && us[j - 1] > u[i] {
-            us[j] = us[j - 1];
+        while j > 0 && load(&us, j - 1) > ui {
+            let before = load(&us, j - 1);
+            store(&mut us, j, before);
             j -= 1;
         }
-        us[j] = u[i];
+        store(&mut us, j, ui);
         i += 1;
     }
     let c = R::splat;
@@ -444,7 +500,7 @@ fn piece_integral<R: Real>(p: &Poly, g: &Groove, side: f32, q: &Query<R>, area: 
     };
     let mut k = 0;
     while k + 1 < p.n {
-        let (ua, ub) = (us[k], us[k + 1]);
+        let (ua, ub) = (load(&us, k), load(&us, k + 1));
         if ub > ua {
             let slab = slab_of(&u, &v, p.n, ua, ub);
             let mut term = 0;
@@ -487,10 +543,11 @@ fn slab_of(u: &[f32; MAX_VERTS], v: &[f32; MAX_VERTS], n: usize, ua: f32, ub: f3
     let mut i = 0;
     while i < n {
         let j = if i + 1 == n { 0 } else { i + 1 };
-        let (u0, u1) = (u[i], u[j]);
+        let (u0, u1) = (load(u, i), load(u, j));
         if u0 != u1 && (u0 - um) * (u1 - um) <= 0.0 {
-            let slope = (v[j] - v[i]) / (u1 - u0);
-            let at = v[i] + slope * (um - u0);
+            let (v0, v1) = (load(v, i), load(v, j));
+            let slope = (v1 - v0) / (u1 - u0);
+            let at = v0 + slope * (um - u0);
             if at < lo {
                 lo = at;
                 l1 = slope;
@@ -653,11 +710,13 @@ fn slab_integral_across<R: Real>(
 #[inline(always)]
 fn panel_node<R: Real>(j: f32, node: usize, panels: R) -> (R, R) {
     let c = R::splat;
-    let (x, w) = if node < 2 {
-        (-GL4_X[node], GL4_W[node])
+    // Nodes −x₀, −x₁, x₀, x₁ (constant indices: no bounds check, as [`load`]).
+    let (x, w) = if node == 0 || node == 2 {
+        (GL4_X[0], GL4_W[0])
     } else {
-        (GL4_X[node - 2], GL4_W[node - 2])
+        (GL4_X[1], GL4_W[1])
     };
+    let x = if node < 2 { -x } else { x };
     let live = c(j).lt(panels);
     (
         c(j + 0.5 + 0.5 * x) / panels,

@@ -107,10 +107,10 @@ impl<R: Real> ScratchTerms<R> {
         take: R::Mask,
     ) {
         let c = crossing_correction_lanes(
-            a.0,
-            a.1,
-            b.0,
-            b.1,
+            *a.0,
+            *a.1,
+            *b.0,
+            *b.1,
             q.x0,
             q.xi,
             q.depth_half_turns_per_um,
@@ -136,7 +136,7 @@ fn overlap_density_lanes<R: Real>(
     window: Window,
     near: (Vec2, f32),
 ) -> R {
-    crossing_overlap_weight_lanes(a.0, a.1, b.0, b.1, x0, sigma, window, near)
+    crossing_overlap_weight_lanes(*a.0, *a.1, *b.0, *b.1, x0, sigma, window, near)
         / R::splat(math::TAU * sigma * sigma)
 }
 
