@@ -238,6 +238,25 @@ fn best_time(repeats: usize, mut run: impl FnMut() -> Vec<f32>) -> f64 {
 }
 
 /// The best of three rounds of two timings, interleaved so that a change in the machine's
+/// The two timed backends, and for each an empty line series labelled `"{backend}: {ratio}"`.
+fn ratio_series(ratio: &str) -> ([(&'static str, Backend); 2], Vec<Series>) {
+    let backends = [
+        ("scalar", Backend::Scalar),
+        ("SIMD, one thread", Backend::SimdSingleThread),
+    ];
+    let series = backends
+        .iter()
+        .zip(COLORS)
+        .map(|((label, _), color)| Series {
+            label: format!("{label}: {ratio}"),
+            color: color.into(),
+            line: true,
+            points: Vec::new(),
+        })
+        .collect();
+    (backends, series)
+}
+
 /// load touches both.
 fn interleaved(mut a: impl FnMut() -> f64, mut b: impl FnMut() -> f64) -> (f64, f64) {
     let (mut ta, mut tb) = (f64::INFINITY, f64::INFINITY);
@@ -252,20 +271,7 @@ fn interleaved(mut a: impl FnMut() -> f64, mut b: impl FnMut() -> f64) -> (f64, 
 /// Werner, σ = 10 µm, 4 096 queries near the specular direction), by scratches in the window.
 fn cost_chart() -> String {
     let queries = queries_near_specular(4096, 7);
-    let backends = [
-        ("scalar", Backend::Scalar),
-        ("SIMD, one thread", Backend::SimdSingleThread),
-    ];
-    let mut series: Vec<Series> = backends
-        .iter()
-        .zip(COLORS)
-        .map(|((label, _), color)| Series {
-            label: format!("{label}: exact / frozen"),
-            color: color.into(),
-            line: true,
-            points: Vec::new(),
-        })
-        .collect();
+    let (backends, mut series) = ratio_series("exact / frozen");
     for n in [1usize, 10, 100] {
         let scratches = scratches_in_window(n, 10.0, n as u64);
         for ((_, backend), s) in backends.iter().zip(&mut series) {
@@ -341,20 +347,7 @@ fn crossing_grid(k: usize) -> Vec<Scratch> {
 /// reference integrates), by crossing pairs in the window; also prints the time per pair.
 fn crossing_cost_chart() -> String {
     let queries = queries_near_specular(1024, 11);
-    let backends = [
-        ("scalar", Backend::Scalar),
-        ("SIMD, one thread", Backend::SimdSingleThread),
-    ];
-    let mut series: Vec<Series> = backends
-        .iter()
-        .zip(COLORS)
-        .map(|((label, _), color)| Series {
-            label: format!("{label}: deepest / summed"),
-            color: color.into(),
-            line: true,
-            points: Vec::new(),
-        })
-        .collect();
+    let (backends, mut series) = ratio_series("deepest / summed");
     let mut per_pair = Vec::new();
     for k in [1usize, 3, 10] {
         let scratches = crossing_grid(k);

@@ -211,6 +211,21 @@ fn endpoint_faddeeva<R: Real>(
 /// √(π/2).
 const SQRT_PI_OVER_2: f32 = 1.253_314_137_315_500_3;
 
+/// `acc` plus the nodes `m ∓ d` of weight `w` in [`gauss_legendre`]: the window there
+/// times the offsets' phases `e^{±2πiνd}`.
+#[inline(always)]
+fn gl_node_pair<R: Real>(mut acc: Cx<R>, mid: R, d: R, inv2s2: R, nu: R, w: R) -> Cx<R> {
+    let c = R::splat;
+    let mut j = 0;
+    while j < 2 {
+        let (u, off) = if j == 0 { (mid - d, -d) } else { (mid + d, d) };
+        let g = (-u * u * inv2s2).exp() * w;
+        acc = acc + cis_pi_lanes(c(-2.0) * nu * off).scale(g);
+        j += 1;
+    }
+    acc
+}
+
 /// Direct 8-point Gauss–Legendre quadrature of the integrand over `[m − h, m + h]` (short
 /// intervals only). The phase at the centre, `e^{−2πiνm}`, is factored out, so the nodes
 /// carry only the small phases `2πν·(±d)` of their offsets (with `REDUCED`, left out).
@@ -218,22 +233,12 @@ const SQRT_PI_OVER_2: f32 = 1.253_314_137_315_500_3;
 fn gauss_legendre<R: Real, const REDUCED: bool>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
     let c = R::splat;
     let inv2s2 = c(0.5) / (sigma * sigma);
-    let mut acc = Cx::splat(0.0, 0.0);
     // The node pairs ±x_i by constant index (no panic path; see `faddeeva::horner`).
-    let mut pair = |x: f32, w: f32| {
-        let d = half * c(x);
-        let mut j = 0;
-        while j < 2 {
-            let (u, off) = if j == 0 { (mid - d, -d) } else { (mid + d, d) };
-            let g = (-u * u * inv2s2).exp() * c(w);
-            acc = acc + cis_pi_lanes(c(-2.0) * nu * off).scale(g);
-            j += 1;
-        }
-    };
-    pair(GL_X[0], GL_W[0]);
-    pair(GL_X[1], GL_W[1]);
-    pair(GL_X[2], GL_W[2]);
-    pair(GL_X[3], GL_W[3]);
+    let mut acc = Cx::splat(0.0, 0.0);
+    acc = gl_node_pair(acc, mid, half * c(GL_X[0]), inv2s2, nu, c(GL_W[0]));
+    acc = gl_node_pair(acc, mid, half * c(GL_X[1]), inv2s2, nu, c(GL_W[1]));
+    acc = gl_node_pair(acc, mid, half * c(GL_X[2]), inv2s2, nu, c(GL_W[2]));
+    acc = gl_node_pair(acc, mid, half * c(GL_X[3]), inv2s2, nu, c(GL_W[3]));
     if REDUCED {
         acc.scale(half)
     } else {

@@ -206,6 +206,23 @@ impl Groove {
             .clip(-self.b, self.half_w - self.off_b)
     }
 
+    /// Sides of the centre line to take one by one: a V's two, a rectangle's one.
+    fn sides(&self) -> usize {
+        if self.vee { 2 } else { 1 }
+    }
+
+    /// Side `i` of [`Self::sides`]: its sign (+1 for `i = 0`, else −1) and the part of `p`
+    /// there (all of `p` for a rectangle).
+    fn side(&self, p: Poly, i: usize) -> (f32, Poly) {
+        let sign = if i == 0 { 1.0 } else { -1.0 };
+        let part = if self.vee {
+            p.clip(sign * self.b, sign * self.off_b)
+        } else {
+            p
+        };
+        (sign, part)
+    }
+
     /// Depth on the side `side` (±1) of the centre line as `k·q + k0` (a V is linear there).
     fn depth_plane(&self, side: f32) -> (Vec2, f32) {
         if !self.vee {
@@ -388,24 +405,12 @@ fn pair_integral<R: Real>(
         window,
     };
     // Sides of each V's centre line (one pass for a rectangle).
-    let sides_a = if ga.vee { 2 } else { 1 };
-    let sides_b = if gb.vee { 2 } else { 1 };
     let mut i = 0;
-    while i < sides_a {
-        let sa = if i == 0 { 1.0 } else { -1.0 };
-        let pa = if ga.vee {
-            whole.clip(sa * ga.b, sa * ga.off_b)
-        } else {
-            whole
-        };
+    while i < ga.sides() {
+        let (sa, pa) = ga.side(whole, i);
         let mut j = 0;
-        while j < sides_b {
-            let sb = if j == 0 { 1.0 } else { -1.0 };
-            let p = if gb.vee {
-                pa.clip(sb * gb.b, sb * gb.off_b)
-            } else {
-                pa
-            };
+        while j < gb.sides() {
+            let (sb, p) = gb.side(pa, j);
             // depth_a − depth_b = k·q + k0, linear on p: b is taken away where it is ≥ 0
             // (on a tie too), a where it is < 0. One call site (one copy of the piece's
             // integral in the code).
@@ -501,8 +506,8 @@ fn piece_integral<R: Real>(p: &Poly, g: &Groove, side: f32, q: &Query<R>, area: 
     let mut k = 0;
     while k + 1 < p.n {
         let (ua, ub) = (load(&us, k), load(&us, k + 1));
-        if ub > ua {
-            let slab = slab_of(&u, &v, p.n, ua, ub);
+        let slab = slab_of(&u, &v, p.n, ua, ub);
+        if ub > ua && slab.h > 0.0 {
             let mut term = 0;
             while term < terms {
                 let (w, nu) = if term == 0 { (w0, c(0.0)) } else { (w1, nu1) };
@@ -510,10 +515,17 @@ fn piece_integral<R: Real>(p: &Poly, g: &Groove, side: f32, q: &Query<R>, area: 
                 // there the first moment's closed form loses at most a factor ~(σ/h)² of
                 // f32 precision (16 here); shorter slabs go across.
                 let long = math::max(slab.d + math::abs(slab.d1) * slab.h, 0.5 * q.sigma);
+                let f = InFrame {
+                    xi1,
+                    xi2,
+                    nu,
+                    p_t,
+                    p_b,
+                };
                 let s = if 2.0 * slab.h <= long {
-                    slab_integral_across(&slab, g, xi1, xi2, nu, p_t, p_b, q)
+                    slab_integral_across(&slab, g, &f, q)
                 } else {
-                    slab_integral(&slab, g, xi1, xi2, nu, p_t, p_b, q)
+                    slab_integral(&slab, g, &f, q)
                 };
                 sum = sum + w * s;
                 term += 1;
@@ -580,40 +592,40 @@ fn slab_of(u: &[f32; MAX_VERTS], v: &[f32; MAX_VERTS], n: usize, ua: f32, ub: f3
     }
 }
 
-/// `∫∫_slab G(p) e^{−2πi [ξ·(p − o) + ν v']} dp`, `v'` across from g's centre line.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn slab_integral<R: Real>(
-    s: &Slab,
-    g: &Groove,
+/// One query in the frame of the groove taken away, `g`: `ξ·t` (`xi1`), `ξ·b` (`xi2`),
+/// the frequency across of the `1 − T` term (`nu`), and `(o − x0)·t`, `(o − x0)·b`
+/// (`p_t`, `p_b`; µm).
+#[derive(Clone, Copy)]
+struct InFrame<R> {
     xi1: R,
     xi2: R,
     nu: R,
     p_t: R,
     p_b: R,
-    q: &Query<R>,
-) -> Cx<R> {
+}
+
+/// `∫∫_slab G(p) e^{−2πi [ξ·(p − o) + ν v']} dp`, `v'` across from g's centre line (a slab
+/// of positive length).
+#[inline(always)]
+fn slab_integral<R: Real>(s: &Slab, g: &Groove, f: &InFrame<R>, q: &Query<R>) -> Cx<R> {
     let c = R::splat;
     let mut sum = Cx::splat(0.0, 0.0);
-    if !(s.h > 0.0) {
-        return sum;
-    }
     let sigma = c(q.sigma);
     let inv_2s2 = c(0.5 / (q.sigma * q.sigma));
     let exact = q.window == Window::Exact;
     let d_max = s.d + math::abs(s.d1) * s.h;
     // Panels across: the phase 2π|ξ₂ + ν| and, for the exact window, its log-slope |v|/σ²
     // over the slab's widest chord.
-    let rate = c(math::TAU) * (xi2 + nu).abs()
+    let rate = c(math::TAU) * (f.xi2 + f.nu).abs()
         + if exact {
-            ((p_b + c(s.lo + 0.5 * s.d)).abs() + c(d_max)) * c(2.0) * inv_2s2
+            ((f.p_b + c(s.lo + 0.5 * s.d)).abs() + c(d_max)) * c(2.0) * inv_2s2
         } else {
             c(0.0)
         };
     let panels = panels_for(rate * c(d_max));
-    let p = p_t + c(s.um);
+    let p = f.p_t + c(s.um);
     // Frozen: the centre line's window across, (c − x0)·b = p_b − off_b.
-    let frozen_across = p_b - c(g.off_b);
+    let frozen_across = f.p_b - c(g.off_b);
     let mut j = 0.0f32;
     while c(j).lt(panels).any() {
         let mut node = 0;
@@ -621,7 +633,7 @@ fn slab_integral<R: Real>(
             let (t, wt) = panel_node(j, node, panels);
             let c0 = c(s.lo) + t * c(s.d);
             let a1 = c(s.l1) + t * c(s.d1);
-            let qv = p_b + c0;
+            let qv = f.p_b + c0;
             let (mu, r2, sig_e) = if exact {
                 let s2 = c(1.0) + a1 * a1;
                 let cross = p * a1 - qv;
@@ -629,10 +641,11 @@ fn slab_integral<R: Real>(
             } else {
                 (p, frozen_across * frozen_across, sigma)
             };
-            let f = xi1 + (xi2 + nu) * a1;
-            let jac = line_integral(mu, c(s.h), sig_e, f, c(s.d), c(s.d1));
-            let phase =
-                math::cis_pi_lanes(c(-2.0) * (xi1 * c(s.um) + xi2 * c0 + nu * (c0 + c(g.off_b))));
+            let along = f.xi1 + (f.xi2 + f.nu) * a1;
+            let jac = line_integral(mu, c(s.h), sig_e, along, c(s.d), c(s.d1));
+            let phase = math::cis_pi_lanes(
+                c(-2.0) * (f.xi1 * c(s.um) + f.xi2 * c0 + f.nu * (c0 + c(g.off_b))),
+            );
             sum = sum + (phase * jac).scale(wt * (-r2 * inv_2s2).exp());
             node += 1;
         }
@@ -647,33 +660,20 @@ fn slab_integral<R: Real>(
 /// Gauss–Legendre along `u`. No Jacobian, so no moment: the along-`u` moment's closed form
 /// loses a factor ~(σ/h)² of precision to cancellation.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn slab_integral_across<R: Real>(
-    s: &Slab,
-    g: &Groove,
-    xi1: R,
-    xi2: R,
-    nu: R,
-    p_t: R,
-    p_b: R,
-    q: &Query<R>,
-) -> Cx<R> {
+fn slab_integral_across<R: Real>(s: &Slab, g: &Groove, f: &InFrame<R>, q: &Query<R>) -> Cx<R> {
     let c = R::splat;
     let mut sum = Cx::splat(0.0, 0.0);
-    if !(s.h > 0.0) {
-        return sum;
-    }
     let inv_2s2 = c(0.5 / (q.sigma * q.sigma));
     let exact = q.window == Window::Exact;
     let h1 = s.l1 + s.d1;
     let steep = math::max(math::abs(s.l1), math::abs(h1));
-    let p = p_t + c(s.um);
-    let freq = xi2 + nu;
+    let p = f.p_t + c(s.um);
+    let freq = f.xi2 + f.nu;
     // Panels along: the phase of ξ₁u and of the chord's ends, and the window's log-slope.
-    let rate =
-        c(math::TAU) * (xi1.abs() + freq.abs() * c(steep)) + (p.abs() + c(s.h)) * c(2.0) * inv_2s2;
+    let rate = c(math::TAU) * (f.xi1.abs() + freq.abs() * c(steep))
+        + (p.abs() + c(s.h)) * c(2.0) * inv_2s2;
     let panels = panels_for(rate * c(2.0 * s.h));
-    let frozen_across = p_b - c(g.off_b);
+    let frozen_across = f.p_b - c(g.off_b);
     let mut j = 0.0f32;
     while c(j).lt(panels).any() {
         let mut node = 0;
@@ -684,7 +684,7 @@ fn slab_integral_across<R: Real>(
             let half = c(0.5) * (c(s.d) + c(s.d1) * xs);
             let mid = lo + half;
             let chord = if exact {
-                math::gauss_fourier_reduced_lanes(p_b + mid, half, c(q.sigma), freq)
+                math::gauss_fourier_reduced_lanes(f.p_b + mid, half, c(q.sigma), freq)
             } else {
                 Cx::real(
                     c(2.0)
@@ -695,7 +695,7 @@ fn slab_integral_across<R: Real>(
             };
             let u = p + xs;
             let phase = math::cis_pi_lanes(
-                c(-2.0) * (xi1 * (c(s.um) + xs) + xi2 * mid + nu * (mid + c(g.off_b))),
+                c(-2.0) * (f.xi1 * (c(s.um) + xs) + f.xi2 * mid + f.nu * (mid + c(g.off_b))),
             );
             sum = sum + (phase * chord).scale(wt * (-(u * u) * inv_2s2).exp());
             node += 1;
