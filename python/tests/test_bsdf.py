@@ -115,24 +115,33 @@ def test_errors_name_the_field():
         sw.Material(C_MATERIAL, scratches=sw.ScratchSet.from_rows([[0, 0, 1, 0, 1, 0.1]]))
 
 
+def option_against_default(spec, option, value, default, bad, wo, wi):
+    """Evaluates `spec` with `options.<option>` omitted and set to `value`, after checking
+    that the explicit `default` gives the same bits and that velinov and `bad` are refused
+    at `material.options.<option>`; returns both values."""
+    plain = sw.Material(spec)
+    chosen = sw.Material({**spec, "options": {option: value}})
+    same = sw.Material({**spec, "options": {option: default}})
+    a, b = plain.eval(wo, wi), chosen.eval(wo, wi)
+    np.testing.assert_array_equal(bits(a), bits(same.eval(wo, wi)))
+    assert np.all(np.isfinite(b)) and np.all(b > 0)
+    field = rf"material\.options\.{option}"
+    with pytest.raises(sw.InputError, match=field):
+        sw.Material({"model": "velinov", "sigma_um": 10, "options": {option: value}})
+    with pytest.raises(sw.InputError, match=field):
+        sw.Material({**spec, "options": {option: bad}})
+    return a, b
+
+
 def test_exact_window_option():
     # A wide V groove 1.5σ off the shading point: the frozen window is off there
     # (docs/exact_window.md), the exact one is what the spec asks for.
     groove = {"p0": [-500, 15], "p1": [500, 15], "width": 8, "depth": 0.2, "profile": "triangle"}
     spec = {"model": "werner", "sigma_um": 10, "material": {"F": 0.9}, "scratches": [groove]}
-    frozen = sw.Material(spec)
-    exact = sw.Material({**spec, "options": {"window": "exact"}})
-    same = sw.Material({**spec, "options": {"window": "frozen"}})
     wi = np.array([[0.0, 0.0, 1.0]] * 3)
     wo = np.array([[0.0, 0.05, 0.99875], [0.0, 0.12, 0.99277], [0.02, -0.2, 0.97959]])
-    a, b = frozen.eval(wo, wi), exact.eval(wo, wi)
-    np.testing.assert_array_equal(bits(a), bits(same.eval(wo, wi)))
-    assert np.all(np.isfinite(b)) and np.all(b > 0)
+    a, b = option_against_default(spec, "window", "exact", "frozen", "wide", wo, wi)
     assert np.max(np.abs(a - b) / b) > 1e-2
-    with pytest.raises(sw.InputError, match=r"material\.options\.window"):
-        sw.Material({"model": "velinov", "sigma_um": 10, "options": {"window": "exact"}})
-    with pytest.raises(sw.InputError, match=r"material\.options\.window"):
-        sw.Material({**spec, "options": {"window": "wide"}})
 
 
 def test_deepest_crossings_option():
@@ -142,16 +151,7 @@ def test_deepest_crossings_option():
     cross = [{"p0": [-500, 0], "p1": [500, 0], "width": 3, "depth": 0.2},
              {"p0": [2, -500], "p1": [2, 500], "width": 3, "depth": 0.1}]
     spec = {"model": "werner", "sigma_um": 10, "material": {"F": 0.9}, "scratches": cross}
-    summed = sw.Material(spec)
-    same = sw.Material({**spec, "options": {"crossings": "summed"}})
-    deepest = sw.Material({**spec, "options": {"crossings": "deepest"}})
     wi = np.array([[0.0, 0.0, 1.0]] * 3)
     wo = np.array([[0.0, 0.0, 1.0], [0.05, 0.05, 0.9975], [0.1, -0.05, 0.99373]])
-    a, b = summed.eval(wo, wi), deepest.eval(wo, wi)
-    np.testing.assert_array_equal(bits(a), bits(same.eval(wo, wi)))
-    assert np.all(np.isfinite(b)) and np.all(b > 0)
+    a, b = option_against_default(spec, "crossings", "deepest", "summed", "once", wo, wi)
     assert np.min(np.abs(a - b) / b) > 1e-3
-    with pytest.raises(sw.InputError, match=r"material\.options\.crossings"):
-        sw.Material({"model": "velinov", "sigma_um": 10, "options": {"crossings": "deepest"}})
-    with pytest.raises(sw.InputError, match=r"material\.options\.crossings"):
-        sw.Material({**spec, "options": {"crossings": "once"}})

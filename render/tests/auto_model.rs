@@ -147,51 +147,39 @@ fn tolerance_is_checked_and_belongs_to_auto() {
     );
 }
 
-#[test]
-fn the_exact_window_belongs_to_the_coherent_models() {
-    let exact = json!({"options": {"window": "exact"}});
+/// `options.<option> = value` is refused with velinov and auto (naming the field and the
+/// models that take it), reaches werner and werner_blended's table as `stored` (read by
+/// `field`), and `bad` is refused naming the field.
+fn coherent_option(
+    option: &str,
+    value: &str,
+    bad: &str,
+    field: impl Fn(&scratchwave_kernel::table::TableParams) -> u32,
+    stored: u32,
+) {
+    let path = format!("materials.plate.options.{option}");
+    let set = json!({"options": {option: value}});
     for model in ["velinov", "auto"] {
-        let e = read_err(&scene(json!(model), exact.clone()));
-        assert!(e.contains("materials.plate.options.window"), "{model}: {e}");
+        let e = read_err(&scene(json!(model), set.clone()));
+        assert!(e.contains(&path), "{model}: {e}");
         assert!(e.contains("werner_blended"), "{model}: {e}");
     }
     for model in ["werner", "werner_blended"] {
-        let s = read(&scene(json!(model), exact.clone())).unwrap();
-        assert_eq!(
-            s.materials[0].shade.table.window,
-            scratchwave_kernel::scratch::Window::Exact as u32,
-            "{model}"
-        );
+        let s = read(&scene(json!(model), set.clone())).unwrap();
+        assert_eq!(field(&s.materials[0].shade.table), stored, "{model}");
     }
-    let e = read_err(&scene(
-        json!("werner"),
-        json!({"options": {"window": "wide"}}),
-    ));
-    assert!(e.contains("materials.plate.options.window"), "{e}");
+    let e = read_err(&scene(json!("werner"), json!({"options": {option: bad}})));
+    assert!(e.contains(&path), "{e}");
+}
+
+#[test]
+fn the_exact_window_belongs_to_the_coherent_models() {
+    let exact = scratchwave_kernel::scratch::Window::Exact as u32;
+    coherent_option("window", "exact", "wide", |t| t.window, exact);
 }
 
 #[test]
 fn deepest_crossings_belong_to_the_coherent_models() {
-    let deepest = json!({"options": {"crossings": "deepest"}});
-    for model in ["velinov", "auto"] {
-        let e = read_err(&scene(json!(model), deepest.clone()));
-        assert!(
-            e.contains("materials.plate.options.crossings"),
-            "{model}: {e}"
-        );
-        assert!(e.contains("werner_blended"), "{model}: {e}");
-    }
-    for model in ["werner", "werner_blended"] {
-        let s = read(&scene(json!(model), deepest.clone())).unwrap();
-        assert_eq!(
-            s.materials[0].shade.table.crossings,
-            scratchwave_kernel::scratch::Crossings::Deepest as u32,
-            "{model}"
-        );
-    }
-    let e = read_err(&scene(
-        json!("werner"),
-        json!({"options": {"crossings": "once"}}),
-    ));
-    assert!(e.contains("materials.plate.options.crossings"), "{e}");
+    let deepest = scratchwave_kernel::scratch::Crossings::Deepest as u32;
+    coherent_option("crossings", "deepest", "once", |t| t.crossings, deepest);
 }
