@@ -30,6 +30,9 @@ Two switches:
                      there and sees that groove's centre-line window. Implemented as
                      S_deep = S_summed - sum over overlap pieces of the shallower groove's
                      integrand there (pairwise overlaps only; a triple overlap is refused).
+Velinov's incoherent sum (Eq. 7) from the same parts: sum_k |S'_k|^2, S'_k the integral over
+the part of the surface groove k cuts (S_k, less with deepest the overlap pieces where k is
+the shallower groove): `brdf_models`.
 
 frozen/summed is exactly the kernel's Werner model (table::evaluate, model werner,
 depth_term exact): the golden test testkit/tests/heightfield_reference.rs checks that.
@@ -417,11 +420,12 @@ def overlap_pieces(gj, gk, q):
     return out
 
 
-def scratch_S(grooves, q, window, crossings, n):
-    """S for the whole scratch set."""
-    S = sum((groove_S(g, q, window, n) for g in grooves), np.zeros(len(q.kd), dtype=complex))
+def groove_parts(grooves, q, window, crossings, n):
+    """Each groove's own part of S: S_k, less (deepest) the overlap pieces where groove k
+    is the shallower one, i.e. the integral over the part of the surface groove k cuts."""
+    parts = [groove_S(g, q, window, n) for g in grooves]
     if crossings == "summed":
-        return S
+        return parts
     m = len(grooves)
     for i in range(m):
         for j in range(i + 1, m):
@@ -432,11 +436,33 @@ def scratch_S(grooves, q, window, crossings, n):
     for i in range(m):
         for j in range(i + 1, m):
             for P, shallow in overlap_pieces(grooves[i], grooves[j], q):
-                S = S - region_S(P, (grooves[i], grooves[j])[shallow], q, window, n)
-    return S
+                k = (i, j)[shallow]
+                parts[k] = parts[k] - region_S(P, grooves[k], q, window, n)
+    return parts
+
+
+def scratch_S(grooves, q, window, crossings, n):
+    """S for the whole scratch set: the sum of the grooves' parts."""
+    return sum(groove_parts(grooves, q, window, crossings, n),
+               np.zeros(len(q.kd), dtype=complex))
 
 
 VARIANTS = (("frozen", "summed"), ("frozen", "deepest"), ("exact", "summed"), ("exact", "deepest"))
+
+
+def brdf_models(scratches, q, window, crossings, n=2 * ORDER):
+    """Both models from one set of parts, without the cosine:
+    werner  = F/(pi sigma^2 lambda^2) |B - S|^2                 (Werner Eq. 15)
+    velinov = F/(pi sigma^2 lambda^2) sum_k |S'_k|^2            (Velinov Eq. 7, no base;
+              S'_k = the groove's part, so with deepest each groove loses the overlap
+              pieces where the other one cuts deeper: the incoherent sum's intensity form)."""
+    grooves = [Groove(s) for s in scratches]
+    parts = groove_parts(grooves, q, window, crossings, n)
+    S = sum(parts, np.zeros(len(q.kd), dtype=complex))
+    norm = q.F / (math.pi * q.sigma ** 2 * q.lam ** 2)
+    werner = norm * np.abs(q.base() - S) ** 2
+    velinov = norm * sum(np.abs(p) ** 2 for p in parts)
+    return werner, velinov
 
 
 def brdf(scratches, q, window, crossings, n=2 * ORDER, parts=False):

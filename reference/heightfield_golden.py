@@ -215,15 +215,20 @@ def main():
         vals, conv = {}, {}
         variants = hf.VARIANTS if case["kind"] == "crossing" else hf.VARIANTS[::2]
         for window, cross in variants:
-            lo = hf.brdf(case["scratches"], q, window, cross, n=hf.ORDER)
-            hi = hf.brdf(case["scratches"], q, window, cross, n=2 * hf.ORDER)
-            peak = hi.max()
-            big = hi >= 1e-6 * peak
-            rel = float(np.max(np.abs(lo[big] / hi[big] - 1)))
-            ab = float(np.max(np.abs(lo - hi)) / peak)
-            conv[f"{window}_{cross}"] = [rel, ab]
-            conv_worst = (max(conv_worst[0], rel), max(conv_worst[1], ab))
-            vals[f"{window}_{cross}"] = hi
+            lo = hf.brdf_models(case["scratches"], q, window, cross, n=hf.ORDER)
+            hi = hf.brdf_models(case["scratches"], q, window, cross, n=2 * hf.ORDER)
+            # Velinov's incoherent sum for the crossing cases (a single groove's is
+            # Werner's |S|^2, nothing new).
+            models = (("", 0), ("velinov_", 1)) if case["kind"] == "crossing" else (("", 0),)
+            for prefix, m in models:
+                key = f"{prefix}{window}_{cross}"
+                peak = hi[m].max()
+                big = hi[m] >= 1e-6 * peak
+                rel = float(np.max(np.abs(lo[m][big] / hi[m][big] - 1)))
+                ab = float(np.max(np.abs(lo[m] - hi[m])) / peak)
+                conv[key] = [rel, ab]
+                conv_worst = (max(conv_worst[0], rel), max(conv_worst[1], ab))
+                vals[key] = hi[m]
         fs = vals["frozen_summed"]
         ed = vals.get("exact_deepest", vals["exact_summed"])
         med, worst, n = stats(ed, fs)
@@ -242,7 +247,11 @@ def main():
                        "#21). Variants: window frozen at each groove's centre line (Werner "
                        "Eqs. 9-13, the kernel's model) or exact; crossings summed (Werner Eq. "
                        "9) or deepest (cut once). Single grooves store frozen_summed and "
-                       "exact_summed (deepest = summed without a crossing).",
+                       "exact_summed (deepest = summed without a crossing). Crossing cases "
+                       "also store velinov_<window>_<crossings>: Velinov Eq. 7's incoherent "
+                       "sum of the grooves' parts, F/(pi sigma^2 lambda^2) sum_k |S'_k|^2 "
+                       "(no base), each groove's part less, with deepest, the overlap "
+                       "pieces where it is the shallower groove.",
         "generator": "reference/heightfield_golden.py",
         "sigma_um": SIGMA,
         "params": {"model": "werner", "depth_term": "exact"},

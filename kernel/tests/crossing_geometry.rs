@@ -6,7 +6,7 @@
 //! in `testkit/tests/heightfield_reference.rs`.
 
 use scratchwave_kernel::scratch::crossing::{
-    crossing_correction_lanes, crossing_overlap_weight_lanes,
+    Share, crossing_correction_lanes, crossing_overlap_weight_lanes,
 };
 use scratchwave_kernel::scratch::{Scratch, Window};
 
@@ -48,6 +48,7 @@ fn corrections(angle: f32, profile: u32, window: Window, depths: (f32, f32)) -> 
                 SIGMA,
                 window,
                 NEAR,
+                Share::Both,
             );
             (c.re, c.im)
         })
@@ -135,6 +136,7 @@ fn apart_grooves_have_no_correction() {
             SIGMA,
             window,
             NEAR,
+            Share::Both,
         );
         assert_eq!((c.re, c.im), (0.0, 0.0));
         let w = crossing_overlap_weight_lanes(a, fa, b, fb, [0.0f32, 0.0], SIGMA, window, NEAR);
@@ -160,6 +162,7 @@ fn order_free_for_unequal_depths_and_the_exact_window() {
             SIGMA,
             Window::Exact,
             NEAR,
+            Share::Both,
         );
         let ba = crossing_correction_lanes(
             b,
@@ -172,6 +175,7 @@ fn order_free_for_unequal_depths_and_the_exact_window() {
             SIGMA,
             Window::Exact,
             NEAR,
+            Share::Both,
         );
         let e = ((ab.re - ba.re).powi(2) + (ab.im - ba.im).powi(2)).sqrt() / ab.norm_sqr().sqrt();
         assert!(e < 1e-4, "profile {profile}: {ab:?} vs {ba:?}");
@@ -199,4 +203,60 @@ fn overlap_weight_of_a_centred_square() {
     let side = s * h / 3.0;
     let want = side * side;
     assert!(((w as f64) / want - 1.0).abs() < 1e-5, "{w} vs {want}");
+}
+
+/// The shares ([`Share::First`], [`Share::Second`]) split the pair's correction by the groove
+/// cut away: they sum to the whole, the deeper of two rectangles loses nothing (it is never
+/// the shallower one), and for V grooves of one depth each loses a part of the overlap.
+#[test]
+fn shares_split_the_correction_by_the_groove_cut_away() {
+    let share = |a: Scratch, b: Scratch, window: Window, share: Share| {
+        let (fa, fb) = (a.frame().unwrap(), b.frame().unwrap());
+        crossing_correction_lanes(
+            a,
+            fa,
+            b,
+            fb,
+            [0.0f32, 0.0],
+            [0.5, -0.2],
+            6.5,
+            SIGMA,
+            window,
+            NEAR,
+            share,
+        )
+    };
+    for window in [Window::Frozen, Window::Exact] {
+        for (profile, depths) in [(0, (0.2, 0.1)), (0, (0.1, 0.2)), (1, (0.2, 0.2))] {
+            let a = groove(20.0, depths.0, profile);
+            let b = groove(65.0, depths.1, profile);
+            let whole = share(a, b, window, Share::Both);
+            let first = share(a, b, window, Share::First);
+            let second = share(a, b, window, Share::Second);
+            let sum = first + second;
+            let e = (sum - whole).norm_sqr().sqrt() / whole.norm_sqr().sqrt();
+            assert!(
+                e < 1e-6,
+                "{window:?} profile {profile} {depths:?}: {first:?} + {second:?} vs {whole:?}"
+            );
+            if profile == 0 {
+                let (deeper, shallower) = if depths.0 > depths.1 {
+                    (first, second)
+                } else {
+                    (second, first)
+                };
+                assert_eq!((deeper.re, deeper.im), (0.0, 0.0), "{window:?} {depths:?}");
+                assert_eq!(
+                    (shallower.re, shallower.im),
+                    (whole.re, whole.im),
+                    "{window:?} {depths:?}"
+                );
+            } else {
+                // Equal V grooves: each is the shallower one on part of the overlap.
+                let (f, s) = (first.norm_sqr().sqrt(), second.norm_sqr().sqrt());
+                let w = whole.norm_sqr().sqrt();
+                assert!(f > 0.05 * w && s > 0.05 * w, "{window:?}: {f} {s} of {w}");
+            }
+        }
+    }
 }

@@ -32,3 +32,22 @@ def test_table_rejects_bad_specs():
         sw.table({"model": "nope"})
     with pytest.raises(ValueError, match="backend"):
         sw.table({"model": "werner"}, backend="gpu")
+
+
+def test_velinov_takes_deepest_crossings():
+    # Velinov's intensity form of `crossings: deepest` (issue #21): each groove's term loses
+    # the overlap pieces where the other groove cuts deeper before it is squared. Two
+    # rectangular grooves of unequal depth crossing at 90° 2 µm from the shading point: the
+    # shallower one loses the whole overlap, which moves every direction here; with the
+    # frozen window and no tie in depth, the grooves' order does not matter.
+    cross = [{"p0": [-500, 0], "p1": [500, 0], "width": 3, "depth": 0.2},
+             {"p0": [2, -500], "p1": [2, 500], "width": 3, "depth": 0.1}]
+    wos = [[0.0, 0.0, 1.0], [0.05, 0.05, 0.9975], [0.1, -0.05, 0.99373]]
+    queries = [{"wi": [0, 0, 1], "wo": wo, "lambda_nm": 550, "x": [0, 0]} for wo in wos]
+    spec = {"model": "velinov", "sigma_um": 10, "scratches": cross, "queries": queries}
+    deepest = {**spec, "options": {"crossings": "deepest"}}
+    summed, cut = sw.table(spec), sw.table(deepest)
+    assert np.all(np.isfinite(cut)) and np.all(cut > 0)
+    assert np.min(np.abs(cut - summed) / summed) > 1e-3
+    swapped = sw.table({**deepest, "scratches": cross[::-1]})
+    np.testing.assert_allclose(swapped, cut, rtol=1e-5)

@@ -161,12 +161,16 @@ pub fn scene_material(
                  \"velinov\")",
             ));
         }
-        // `auto` may choose the incoherent model, whose sum keeps crossings summed.
-        if shade.table.crossings == Crossings::Deepest as u32 && sm == SceneModel::Auto {
+        // Likewise for the crossings: the closed forms integrate each groove on its own.
+        if shade.table.crossings == Crossings::Deepest as u32
+            && matches!(sm, SceneModel::Velinov | SceneModel::Auto)
+        {
             return Err(SpecError::field(
                 format!("{path}.crossings"),
-                "\"deepest\" is for the coherent models (\"werner\", \"werner_blended\"): \
-                 \"auto\" may choose Velinov's incoherent sum, which keeps crossings summed",
+                "\"deepest\" is for the coherent models in scenes (\"werner\", \
+                 \"werner_blended\"): the incoherent model's footprint and area-light closed \
+                 forms integrate each groove on its own (a table spec may use it with \
+                 \"velinov\")",
             ));
         }
     }

@@ -186,12 +186,13 @@ pub fn table_stream(v: &Value) -> Result<TableStream, SpecError> {
 }
 
 /// Model options `{"eta", "depth_term", "base", "window", "crossings"}` at `path` into
-/// `params` (`eta` and `base` only for model `velinov`, `crossings: "deepest"` only for the
-/// coherent models); an option left out keeps the value `params` has.
+/// `params` (`eta` and `base` only for model `velinov`); an option left out keeps the value
+/// `params` has.
 /// `window`: `"frozen"` (Werner's coherence window at each groove's centre line, the
 /// default) or `"exact"` (integrated across the groove; `kernel::scratch::window`).
 /// `crossings`: `"summed"` (Werner Eq. 9: an overlap is cut by both grooves, the default)
-/// or `"deepest"` (cut once by the deeper groove; `kernel::scratch::crossing`).
+/// or `"deepest"` (cut once by the deeper groove; `kernel::scratch::crossing`; for
+/// `velinov` each groove's intensity from the part of the surface it cuts).
 pub fn options(
     v: &Value,
     path: &str,
@@ -228,13 +229,6 @@ pub fn options(
         params.window = u32::from(c == "exact");
     }
     if let Some(c) = o.opt_choice("crossings", &["summed", "deepest"])? {
-        if c == "deepest" && model == Model::Velinov {
-            return Err(SpecError::field(
-                o.path_of("crossings"),
-                "\"deepest\" is for the coherent models (\"werner\", \"werner_blended\"): \
-                 Velinov's incoherent sum of the grooves' intensities keeps them summed",
-            ));
-        }
         params.crossings = u32::from(c == "deepest");
     }
     Ok(())

@@ -262,6 +262,10 @@ fn case(c: &Value) -> Result<Case, String> {
         "exact_summed",
         "frozen_deepest",
         "exact_deepest",
+        "velinov_frozen_summed",
+        "velinov_exact_summed",
+        "velinov_frozen_deepest",
+        "velinov_exact_deepest",
     ] {
         if let Some(values) = c[v].as_array() {
             let values = values.iter().map(num).collect::<Result<Vec<_>, _>>();

@@ -18,6 +18,9 @@
 //! * Asserted: `table::evaluate` with `window` exact equals the exact/summed variant
 //!   within issue #21's bounds (median 1e-3, worst 1e-2 per case; measured 4.6e-6 and
 //!   4.2e-5).
+//! * Asserted: `crossings` deepest with either window against the deepest variants, for
+//!   Werner's coherent sum and for Velinov's incoherent sum (its intensity form: each
+//!   groove's part of the surface squared on its own), within issue #21's bounds.
 //! * Printed, not asserted: the kernel's error against the exact/deepest variant per case
 //!   (median and worst relative error over the directions above `1e-3` of the case's peak,
 //!   and over the directions off the base lobe, `|ξ| > 0.06/µm`, above `1e-3` of their own
@@ -258,6 +261,80 @@ fn deepest_crossings_match_the_deepest_heightfield_reference() {
     println!(
         "\ncrossings deepest: exact window worst median {:.2e}, worst {:.2e}; frozen window worst median {:.2e}, worst {:.2e}",
         worst_med[0], worst_max[0], worst_med[1], worst_max[1]
+    );
+    assert!(failures.is_empty(), "{}", failures.join("; "));
+}
+
+/// Velinov's incoherent sum with `crossings: deepest` (its intensity form, issue #21): each
+/// groove's term loses the overlap pieces where the other groove cuts deeper before it is
+/// squared. Against the reference's `velinov_<window>_deepest` (Velinov Eq. 7 over the
+/// grooves' parts of the heightfield, no base) for every crossing case, both windows, within
+/// the issue's bounds (median ≤ 1e-3, worst ≤ 1e-2 per case over the directions above
+/// `1e-3` of the case's peak). Printed beside it: Velinov with the crossings summed against
+/// the same reference (what the option changes).
+#[test]
+fn velinov_deepest_crossings_match_the_reference_intensity_form() {
+    use scratchwave_kernel::scratch::{Crossings, Window};
+    use scratchwave_kernel::table::Model;
+    let golden = Golden::load().unwrap();
+    let mut failures = Vec::new();
+    let (mut worst_med, mut worst_max) = ([0.0f64; 2], [0.0f64; 2]);
+    let mut summed_worst = (0.0f64, 0.0f64);
+    println!(
+        "
+velinov, crossings deepest, against the reference's intensity form (median / worst)"
+    );
+    println!(
+        "| case | exact window | frozen window | crossings summed (frozen) vs exact/deepest |"
+    );
+    println!("|---|---:|---:|---:|");
+    for case in golden
+        .cases
+        .iter()
+        .filter(|c| matches!(c.kind, Kind::Crossing { .. }))
+    {
+        let all = vec![true; case.wo.len()];
+        let velinov = |window: Window, crossings: Crossings| {
+            let mut params = golden.params;
+            params.model = Model::Velinov as u32;
+            params.window = window as u32;
+            params.crossings = crossings as u32;
+            case.kernel(&params, golden.material)
+        };
+        let mut row = Vec::new();
+        for (k, (window, variant)) in [
+            (Window::Exact, "velinov_exact_deepest"),
+            (Window::Frozen, "velinov_frozen_deepest"),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let reference = case.variant(variant).unwrap();
+            let got = velinov(window, Crossings::Deepest);
+            let (med, worst) = med_max(&rel_errors(&got, reference, &all));
+            worst_med[k] = worst_med[k].max(med);
+            worst_max[k] = worst_max[k].max(worst);
+            if med > 1e-3 || worst > 1e-2 {
+                failures.push(format!(
+                    "{} ({variant}): median {med:.2e}, worst {worst:.2e}",
+                    case.name
+                ));
+            }
+            row.push(format!("{med:.2e} / {worst:.2e}"));
+        }
+        let summed = velinov(Window::Frozen, Crossings::Summed);
+        let truth = case.variant("velinov_exact_deepest").unwrap();
+        let (sm, sw) = med_max(&rel_errors(&summed, truth, &all));
+        summed_worst = (summed_worst.0.max(sm), summed_worst.1.max(sw));
+        println!(
+            "| {} | {} | {} | {sm:.2e} / {sw:.2e} |",
+            case.name, row[0], row[1]
+        );
+    }
+    println!(
+        "
+velinov deepest: exact window worst median {:.2e}, worst {:.2e}; frozen window worst median {:.2e}, worst {:.2e}; crossings summed (frozen) worst median {:.2e}, worst {:.2e}",
+        worst_med[0], worst_max[0], worst_med[1], worst_max[1], summed_worst.0, summed_worst.1
     );
     assert!(failures.is_empty(), "{}", failures.join("; "));
 }

@@ -13,6 +13,12 @@
 //! pair is the one taken away. Only pairs are corrected: where three grooves overlap, the
 //! triple overlap is corrected once per pair (not modelled).
 //!
+//! **Shares.** `C_ab` splits by the groove cut away ([`Share`]): `C_ab = C_a←b + C_b←a`,
+//! `C_a←b` the pieces where `a` is the shallower one. The walks give each groove its own
+//! part of the surface, `S'_a = S_a − Σ_b C_a←b`, and sum `S = Σ S'_a`; Velinov's
+//! incoherent sum takes the same parts, `Σ |S'_a|²` (its intensity form: each groove's
+//! intensity from the part of the surface it cuts).
+//!
 //! **Pieces.** `O` is a convex polygon: the two strips' parallelogram cut by the segments'
 //! ends. A V groove's depth is linear on each side of its centre line, so `O` is cut along
 //! the V centre lines and then along the line where both depths are equal: up to 8 convex
@@ -49,12 +55,28 @@ gpu_enum! {
     pub enum Crossings {
         /// Each groove cuts the surface on its own: the overlap is cut twice (Werner Eq. 9).
         Summed = 0,
-        /// The deeper groove cuts the overlap once ([`crossing_correction_lanes`]; issue #21),
-        /// in the coherent sum `S` and in ρc. Velinov's incoherent sum `Σ |S_k|²` is left
-        /// summed (the spec and scene readers refuse `deepest` with `velinov`).
+        /// The deeper groove cuts the overlap once ([`crossing_correction_lanes`]; issue #21):
+        /// each groove's term loses the pieces of its overlaps where it is the shallower one,
+        /// `S'_k = S_k − Σ_j C_kj`, in the coherent sum `S = Σ S'_k`, in Velinov's incoherent
+        /// sum `Σ |S'_k|²` (its intensity form) and in ρc.
         Deepest = 1,
     }
     fallback = Summed;
+}
+
+/// Which pieces of a pair's overlap [`crossing_correction_lanes`] integrates: those where
+/// the pair's first groove is cut away, those where the second is, or both (the pair's
+/// whole correction `C_ab`). The shares are what each groove's own term loses (Velinov's
+/// intensity form needs them before squaring).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Share {
+    /// Every piece: `C_ab`.
+    Both = 0,
+    /// The pieces where the first groove (`a`) is the shallower one.
+    First = 1,
+    /// The pieces where the second groove (`b`) is the shallower one (ties included).
+    Second = 2,
 }
 
 /// Largest phase-and-window change (radians) across one Gauss–Legendre panel of a slab:
@@ -306,7 +328,8 @@ struct Query<R> {
 /// the set's order (on a tie in depth `b` is taken away), for one query per lane, over the
 /// part of the overlap inside the square around the disk `near` (centre, radius: the disk
 /// the walk gathered its scratches from, which holds every lane's window where it matters).
-/// Zero when they do not overlap. Subtract it from `S`.
+/// Zero when they do not overlap. Subtract it from `S`. `share` picks the pieces: with
+/// [`Share::First`] or [`Share::Second`] only what that groove's own term loses.
 ///
 /// Out of line: on the CPU (as the exact window's terms) it holds two more Faddeeva paths,
 /// which inlined into every SIMD batch would multiply the CPU crates' build time; on SPIR-V
@@ -326,9 +349,10 @@ pub fn crossing_correction_lanes<R: Real>(
     sigma: f32,
     window: Window,
     near: (Vec2, f32),
+    share: Share,
 ) -> Cx<R> {
     let q = (x0, xi, half_turns_per_um);
-    pair_integral(&a, &fa, &b, &fb, q, sigma, window, near, false)
+    pair_integral(&a, &fa, &b, &fb, q, sigma, window, near, share, false)
 }
 
 /// `∫_O G dA` over the pair's overlap (the window and `near` as in
@@ -356,6 +380,7 @@ pub fn crossing_overlap_weight_lanes<R: Real>(
         sigma,
         window,
         near,
+        Share::Both,
         true,
     )
     .re
@@ -381,6 +406,7 @@ fn pair_integral<R: Real>(
     sigma: f32,
     window: Window,
     near: (Vec2, f32),
+    share: Share,
     area: bool,
 ) -> Cx<R> {
     let mut sum = Cx::splat(0.0, 0.0);
@@ -417,8 +443,14 @@ fn pair_integral<R: Real>(
             let (ka, ka0) = ga.depth_plane(sa);
             let (kb, kb0) = gb.depth_plane(sb);
             let (k, k0) = (ka - kb, ka0 - kb0);
-            let mut half = 0;
-            while half < 2 && p.n >= 3 {
+            // Half 0: b cut away; half 1: a.
+            let (first, last) = match share {
+                Share::Both => (0, 2),
+                Share::First => (1, 2),
+                Share::Second => (0, 1),
+            };
+            let mut half = first;
+            while half < last && p.n >= 3 {
                 let (g, side, sign) = if half == 0 {
                     (gb, sb, 1.0)
                 } else {

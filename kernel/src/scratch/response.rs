@@ -3,7 +3,7 @@
 
 use super::coherent_sum::CoherentSum;
 use super::crossing::{
-    Crossings, crossing_correction_lanes, crossing_overlap_weight_lanes, may_overlap,
+    Crossings, Share, crossing_correction_lanes, crossing_overlap_weight_lanes, may_overlap,
 };
 use super::profile::{Profile, mask_minus_profile_lanes};
 use super::record::{Scratch, SegmentFrame};
@@ -43,7 +43,8 @@ pub struct ScratchTerms<R = f32> {
     /// Coherent scratch response `S = Σ (M_k − P_k) η_k` (Werner Eq. 17), µm², summed
     /// exactly (use [`CoherentSum::subtracted_from`] for `B − S`).
     pub coherent: CoherentSum<R>,
-    /// Incoherent sum `Σ |S_k|²` (Velinov Eq. 7), µm⁴.
+    /// Incoherent sum `Σ |S_k|²` (Velinov Eq. 7), µm⁴; with [`Crossings::Deepest`] each
+    /// term less what its groove loses to deeper partners ([`cut_of`]) before squaring.
     pub incoherent: R,
     /// Scratch area density ρc at `x0` (dimensionless; 1 for a fully scratched window);
     /// 0 unless [`ResponseInputs::area_density`] asked for it.
@@ -72,33 +73,48 @@ impl<R: Real> ScratchTerms<R> {
         q: &ResponseInputs<R>,
         take: R::Mask,
     ) {
-        let zero = R::splat(0.0);
-        let sk = scratch_term_lanes(
-            s,
-            frame,
-            q.x0,
-            q.xi,
-            q.depth_half_turns_per_um,
-            q.sigma,
-            q.eta,
-            q.window,
-        );
+        let sk = term_of(s, frame, q);
+        self.add(sk, s, frame, q, take);
+    }
+
+    /// [`Self::accumulate`] with the term less `cut`, what the scratch loses where other
+    /// grooves cut deeper ([`Crossings::Deepest`]: [`cut_of`] summed over its partners).
+    #[inline(always)]
+    pub fn accumulate_less(
+        &mut self,
+        s: &Scratch,
+        frame: &SegmentFrame,
+        q: &ResponseInputs<R>,
+        cut: Cx<R>,
+        take: R::Mask,
+    ) {
+        let sk = term_of(s, frame, q) - cut;
+        self.add(sk, s, frame, q, take);
+    }
+
+    /// Adds the term `sk` of scratch `s` (coherent and incoherent sums) and its ρc share.
+    #[inline(always)]
+    fn add(
+        &mut self,
+        sk: Cx<R>,
+        s: &Scratch,
+        frame: &SegmentFrame,
+        q: &ResponseInputs<R>,
+        take: R::Mask,
+    ) {
         let sk = Cx::blend(take, sk, Cx::zero());
         self.coherent.add(sk);
         self.incoherent = self.incoherent + sk.norm_sqr();
         if q.area_density {
             let rho = area_density_lanes(frame, s.width, q.x0, q.sigma, q.window);
-            self.area_density = self.area_density + R::select(take, rho, zero);
+            self.area_density = self.area_density + R::select(take, rho, R::splat(0.0));
         }
     }
 
-    /// Takes the overlap of scratches `a` and `b` (`a` first in the walk) out once, in the
-    /// lanes of `take`: the crossing correction from `S`
-    /// ([`super::crossing::crossing_correction_lanes`]) and, when `q` asks for ρc, the
-    /// overlap's second count from ρc. The one pair step of the walks with
-    /// [`Crossings::Deepest`].
+    /// Takes the overlap of scratches `a` and `b` out of ρc once (its second count), in the
+    /// lanes of `take`, when `q` asks for ρc.
     #[inline(always)]
-    pub fn take_out_overlap(
+    pub fn take_out_overlap_density(
         &mut self,
         a: (&Scratch, &SegmentFrame),
         b: (&Scratch, &SegmentFrame),
@@ -106,24 +122,63 @@ impl<R: Real> ScratchTerms<R> {
         near: (Vec2, f32),
         take: R::Mask,
     ) {
-        let c = crossing_correction_lanes(
-            *a.0,
-            *a.1,
-            *b.0,
-            *b.1,
-            q.x0,
-            q.xi,
-            q.depth_half_turns_per_um,
-            q.sigma,
-            q.window,
-            near,
-        );
-        self.coherent.add(-Cx::blend(take, c, Cx::zero()));
         if q.area_density {
             let w = overlap_density_lanes(a, b, q.x0, q.sigma, q.window, near);
             self.area_density = self.area_density - R::select(take, w, R::splat(0.0));
         }
     }
+}
+
+/// Scratch `s`'s term `S_k` for the queries of `q` (the one call of [`scratch_term_lanes`]
+/// in the walks).
+#[inline(always)]
+fn term_of<R: Real>(s: &Scratch, frame: &SegmentFrame, q: &ResponseInputs<R>) -> Cx<R> {
+    scratch_term_lanes(
+        s,
+        frame,
+        q.x0,
+        q.xi,
+        q.depth_half_turns_per_um,
+        q.sigma,
+        q.eta,
+        q.window,
+    )
+}
+
+/// What scratch `a` loses to partner `b` where `b` cuts deeper ([`Crossings::Deepest`]):
+/// the pieces of their overlap where `a` is the shallower groove, with the pair ordered as
+/// the walk yields it (`a_first`: `a` before `b`; on a tie in depth the later groove is cut
+/// away). Summed over a scratch's partners it is what its term loses; summed over both
+/// grooves of a pair, the pair's whole correction `C_ab`.
+#[inline(always)]
+pub fn cut_of<R: Real>(
+    a: (&Scratch, &SegmentFrame),
+    b: (&Scratch, &SegmentFrame),
+    a_first: bool,
+    q: &ResponseInputs<R>,
+    near: (Vec2, f32),
+) -> Cx<R> {
+    // The records by value (a choice between references is a phi of pointers, which
+    // SPIR-V's logical addressing does not allow).
+    let (a, b) = ((*a.0, *a.1), (*b.0, *b.1));
+    let ((first, f_first), (second, f_second), share) = if a_first {
+        (a, b, Share::First)
+    } else {
+        (b, a, Share::Second)
+    };
+    crossing_correction_lanes(
+        first,
+        f_first,
+        second,
+        f_second,
+        q.x0,
+        q.xi,
+        q.depth_half_turns_per_um,
+        q.sigma,
+        q.window,
+        near,
+        share,
+    )
 }
 
 /// The overlap of `a` and `b` in ρc: `∫_O G dA / (2πσ²)`.
@@ -219,7 +274,10 @@ fn batch_walk<S: ScratchSet, const N: usize>(
         m.max(math::sqrt((*p - centre).length_squared()))
     });
     let union = radius + spread * (1.0 + 1.0e-5) + 1.0e-6 * radius;
+    let near = (centre, union);
     let mut cursor = NearCursor::default();
+    // `me`: the candidate's place in the walk (the partner walk below counts the same way).
+    let mut me = 0u32;
     while let Some(s) = set.next_near(&mut cursor, centre, union) {
         if let Some(frame) = s.frame() {
             let take = LaneMask(points.map(|p| {
@@ -233,35 +291,42 @@ fn batch_walk<S: ScratchSet, const N: usize>(
             lane_use.candidates += 1;
             lane_use.lanes += n as u64;
             if n > 0 {
-                terms.accumulate(&s, &frame, q, take);
+                // What this candidate loses to each other one (deepest), and (once per pair,
+                // from the earlier one) the overlap's second count in ρc. One call site of
+                // the term either way (zero cut when summed: `x − 0` is `x`), so the batch
+                // carries one inlined copy of it.
+                let mut cut = Cx::zero();
                 if q.crossings == Crossings::Deepest {
-                    // Every later candidate once: the walk resumed from here.
-                    let mut later = cursor;
-                    while let Some(s2) = set.next_near(&mut later, centre, union) {
-                        if let Some(frame2) = s2.frame()
+                    let mut other = NearCursor::default();
+                    let mut i = 0u32;
+                    while let Some(s2) = set.next_near(&mut other, centre, union) {
+                        if i != me
+                            && let Some(frame2) = s2.frame()
                             && may_overlap(&frame, &s, &frame2, &s2)
                         {
-                            let both = LaneMask(core::array::from_fn(|i| {
-                                if take.0[i] != 0 && s2.distance_to(points[i]) <= radius {
+                            let both = LaneMask(core::array::from_fn(|l| {
+                                if take.0[l] != 0 && s2.distance_to(points[l]) <= radius {
                                     u32::MAX
                                 } else {
                                     0
                                 }
                             }));
                             if both.0.iter().any(|&m| m != 0) {
-                                terms.take_out_overlap(
-                                    (&s, &frame),
-                                    (&s2, &frame2),
-                                    q,
-                                    (centre, union),
-                                    both,
-                                );
+                                let (a, b) = ((&s, &frame), (&s2, &frame2));
+                                let c = cut_of(a, b, me < i, q, near);
+                                cut = cut + Cx::blend(both, c, Cx::zero());
+                                if me < i {
+                                    terms.take_out_overlap_density(a, b, q, near, both);
+                                }
                             }
                         }
+                        i += 1;
                     }
                 }
+                terms.accumulate_less(&s, &frame, q, cut, take);
             }
         }
+        me += 1;
     }
     lane_use.batches += 1;
     terms
@@ -460,8 +525,18 @@ fn spectral_walk<S: ScratchSet, const PAIRS: bool>(
     let sigma = q.sigma;
     let mut rho = 0.0;
     let mut cursor = NearCursor::default();
+    // `me`: the scratch's place in the walk (as `cuts_of` counts).
+    let mut me = 0u32;
     while let Some(s) = set.next_near(&mut cursor, q.x0, CUTOFF_SIGMAS * sigma) {
         if let Some(frame) = s.frame() {
+            // What the scratch loses to deeper partners, per wavelength (one call site of
+            // the term in either instance: on SPIR-V the cuts are zero when summed).
+            let deepest = PAIRS && q.crossings == Crossings::Deepest;
+            let cuts = if deepest {
+                cuts_of(set, me, (&s, &frame), q)
+            } else {
+                [Cx::zero(); MAX_SPECTRAL]
+            };
             let mut j = 0;
             while j < MAX_SPECTRAL && j < n {
                 let one = q.one(j);
@@ -469,20 +544,22 @@ fn spectral_walk<S: ScratchSet, const PAIRS: bool>(
                 // in place through a run-time index into this array of structs (the
                 // lavapipe test `backend-spirv/tests/bsdf.rs` caught it).
                 let mut t = terms[j];
-                t.accumulate(&s, &frame, &one, true);
+                if PAIRS {
+                    t.accumulate_less(&s, &frame, &one, cuts[j], true);
+                } else {
+                    t.accumulate(&s, &frame, &one, true);
+                }
                 terms[j] = t;
                 j += 1;
             }
             if q.area_density {
                 rho += area_density_of(&frame, s.width, q.x0, sigma, q.window);
-            }
-            if PAIRS && q.crossings == Crossings::Deepest {
-                take_out_overlaps(set, cursor, (&s, &frame), q, &mut terms);
-                if q.area_density {
+                if deepest {
                     rho -= overlaps_density(set, cursor, (&s, &frame), q.x0, sigma, q.window);
                 }
             }
         }
+        me += 1;
     }
     let mut j = 0;
     while j < MAX_SPECTRAL {
@@ -494,32 +571,33 @@ fn spectral_walk<S: ScratchSet, const PAIRS: bool>(
     terms
 }
 
-/// [`Crossings::Deepest`] in [`scratch_response_spectral`]: takes the overlaps of `a` with
-/// every later scratch of the walk (resumed from `cursor`, just past `a`) out of each
-/// wavelength's `S`.
-fn take_out_overlaps<S: ScratchSet>(
+/// [`Crossings::Deepest`] in [`scratch_response_spectral`]: what scratch `a`, the walk's
+/// scratch number `me`, loses to every other scratch of the walk (walked again from the
+/// start, counted the same way), per wavelength ([`cut_of`]).
+fn cuts_of<S: ScratchSet>(
     set: &S,
-    cursor: NearCursor,
+    me: u32,
     a: (&Scratch, &SegmentFrame),
     q: &SpectralInputs,
-    terms: &mut [ScratchTerms; MAX_SPECTRAL],
-) {
+) -> [Cx<f32>; MAX_SPECTRAL] {
+    let mut cuts = [Cx::zero(); MAX_SPECTRAL];
     let near = (q.x0, CUTOFF_SIGMAS * q.sigma);
-    let mut later = cursor;
-    while let Some(s2) = set.next_near(&mut later, near.0, near.1) {
-        if let Some(frame2) = s2.frame()
+    let mut other = NearCursor::default();
+    let mut i = 0u32;
+    while let Some(s2) = set.next_near(&mut other, near.0, near.1) {
+        if i != me
+            && let Some(frame2) = s2.frame()
             && may_overlap(a.1, a.0, &frame2, &s2)
         {
             let mut j = 0;
             while j < MAX_SPECTRAL && j < q.count as usize {
-                // Whole-element update, as in the walk.
-                let mut t = terms[j];
-                t.take_out_overlap(a, (&s2, &frame2), &q.one(j), near, true);
-                terms[j] = t;
+                cuts[j] = cuts[j] + cut_of(a, (&s2, &frame2), me < i, &q.one(j), near);
                 j += 1;
             }
         }
+        i += 1;
     }
+    cuts
 }
 
 /// [`Crossings::Deepest`] in ρc: the overlaps of `a` with every later scratch of the walk
