@@ -46,7 +46,8 @@ const P99_ULP: u32 = 0;
 /// The bounds (99th percentile, worst) with crossings cut once (issue #21). Each crossing
 /// pair's correction is a Gauss–Legendre sum of oscillating terms over its overlap, which
 /// amplifies the lane and scalar `exp`/`sin`/`cos` last-bit differences where the terms
-/// nearly cancel: measured p99 329 ULP, worst 4 747 (400 random scratches, 6 000 queries;
+/// nearly cancel: measured p99 324 ULP, worst 4 912 for werner with the exact window, p99
+/// 39, worst 928 for velinov (400 random scratches, 6 000 queries in release builds;
 /// about 4e-5 and 6e-4 relative). With `portable-math` the arithmetic is the same and the
 /// values are not quite bit-identical (p99 8, worst 561): the lanes clip each overlap to
 /// one square around their shared walk disk, the scalar path to its own, and the strips

@@ -26,6 +26,8 @@
 //!   and over the directions off the base lobe, `|ξ| > 0.06/µm`, above `1e-3` of their own
 //!   peak), and a summary by parameter (`docs/exact_window.md`).
 
+use scratchwave_kernel::scratch::{Crossings, Window};
+use scratchwave_kernel::table::Model;
 use scratchwave_testkit::heightfield::{Case, FLOOR, Golden, Kind, med_max, rel_errors};
 use std::collections::BTreeMap;
 
@@ -169,7 +171,7 @@ fn group_keys(case: &Case) -> Vec<String> {
 fn exact_window_matches_exact_summed_heightfield_reference() {
     let golden = Golden::load().unwrap();
     let mut params = golden.params;
-    params.window = scratchwave_kernel::scratch::Window::Exact as u32;
+    params.window = Window::Exact as u32;
     let (mut worst_med, mut worst_max, mut at) = (0.0f64, 0.0f64, String::new());
     let (mut frozen_med, mut frozen_max) = (0.0f64, 0.0f64);
     let mut failures = Vec::new();
@@ -213,44 +215,17 @@ fn exact_window_matches_exact_summed_heightfield_reference() {
 /// case beside Werner's (frozen/summed) error against the surface.
 #[test]
 fn deepest_crossings_match_the_deepest_heightfield_reference() {
-    use scratchwave_kernel::scratch::{Crossings, Window};
     let golden = Golden::load().unwrap();
     let mut failures = Vec::new();
-    let (mut worst_med, mut worst_max) = ([0.0f64; 2], [0.0f64; 2]);
+    let mut worst = [(0.0f64, 0.0f64); 2];
     println!("\ncrossings: deepest against the reference, relative error (median / worst)");
     println!(
         "| case | exact/deepest vs exact/deepest | frozen/deepest vs frozen/deepest | Werner (frozen/summed) vs exact/deepest |"
     );
     println!("|---|---:|---:|---:|");
-    for case in golden
-        .cases
-        .iter()
-        .filter(|c| matches!(c.kind, Kind::Crossing { .. }))
-    {
+    for case in crossing_cases(&golden) {
         let all = vec![true; case.wo.len()];
-        let mut row = Vec::new();
-        for (k, (window, variant)) in [
-            (Window::Exact, "exact_deepest"),
-            (Window::Frozen, "frozen_deepest"),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            let mut params = golden.params;
-            params.window = window as u32;
-            params.crossings = Crossings::Deepest as u32;
-            let got = case.kernel(&params, golden.material);
-            let (med, worst) = med_max(&rel_errors(&got, case.variant(variant).unwrap(), &all));
-            worst_med[k] = worst_med[k].max(med);
-            worst_max[k] = worst_max[k].max(worst);
-            if med > 1e-3 || worst > 1e-2 {
-                failures.push(format!(
-                    "{} ({variant}): median {med:.2e}, worst {worst:.2e}",
-                    case.name
-                ));
-            }
-            row.push(format!("{med:.2e} / {worst:.2e}"));
-        }
+        let row = deepest_cells(&golden, case, Model::Werner, "", &mut worst, &mut failures);
         let werner = case.kernel(&golden.params, golden.material);
         let (wm, ww) = med_max(&rel_errors(&werner, case.truth(), &all));
         println!(
@@ -260,7 +235,7 @@ fn deepest_crossings_match_the_deepest_heightfield_reference() {
     }
     println!(
         "\ncrossings deepest: exact window worst median {:.2e}, worst {:.2e}; frozen window worst median {:.2e}, worst {:.2e}",
-        worst_med[0], worst_max[0], worst_med[1], worst_max[1]
+        worst[0].0, worst[0].1, worst[1].0, worst[1].1
     );
     assert!(failures.is_empty(), "{}", failures.join("; "));
 }
@@ -274,11 +249,9 @@ fn deepest_crossings_match_the_deepest_heightfield_reference() {
 /// the same reference (what the option changes).
 #[test]
 fn velinov_deepest_crossings_match_the_reference_intensity_form() {
-    use scratchwave_kernel::scratch::{Crossings, Window};
-    use scratchwave_kernel::table::Model;
     let golden = Golden::load().unwrap();
     let mut failures = Vec::new();
-    let (mut worst_med, mut worst_max) = ([0.0f64; 2], [0.0f64; 2]);
+    let mut worst = [(0.0f64, 0.0f64); 2];
     let mut summed_worst = (0.0f64, 0.0f64);
     println!(
         "
@@ -288,41 +261,21 @@ velinov, crossings deepest, against the reference's intensity form (median / wor
         "| case | exact window | frozen window | crossings summed (frozen) vs exact/deepest |"
     );
     println!("|---|---:|---:|---:|");
-    for case in golden
-        .cases
-        .iter()
-        .filter(|c| matches!(c.kind, Kind::Crossing { .. }))
-    {
+    for case in crossing_cases(&golden) {
         let all = vec![true; case.wo.len()];
-        let velinov = |window: Window, crossings: Crossings| {
-            let mut params = golden.params;
-            params.model = Model::Velinov as u32;
-            params.window = window as u32;
-            params.crossings = crossings as u32;
-            case.kernel(&params, golden.material)
-        };
-        let mut row = Vec::new();
-        for (k, (window, variant)) in [
-            (Window::Exact, "velinov_exact_deepest"),
-            (Window::Frozen, "velinov_frozen_deepest"),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            let reference = case.variant(variant).unwrap();
-            let got = velinov(window, Crossings::Deepest);
-            let (med, worst) = med_max(&rel_errors(&got, reference, &all));
-            worst_med[k] = worst_med[k].max(med);
-            worst_max[k] = worst_max[k].max(worst);
-            if med > 1e-3 || worst > 1e-2 {
-                failures.push(format!(
-                    "{} ({variant}): median {med:.2e}, worst {worst:.2e}",
-                    case.name
-                ));
-            }
-            row.push(format!("{med:.2e} / {worst:.2e}"));
-        }
-        let summed = velinov(Window::Frozen, Crossings::Summed);
+        let row = deepest_cells(
+            &golden,
+            case,
+            Model::Velinov,
+            "velinov_",
+            &mut worst,
+            &mut failures,
+        );
+        let mut params = golden.params;
+        params.model = Model::Velinov as u32;
+        params.window = Window::Frozen as u32;
+        params.crossings = Crossings::Summed as u32;
+        let summed = case.kernel(&params, golden.material);
         let truth = case.variant("velinov_exact_deepest").unwrap();
         let (sm, sw) = med_max(&rel_errors(&summed, truth, &all));
         summed_worst = (summed_worst.0.max(sm), summed_worst.1.max(sw));
@@ -334,7 +287,49 @@ velinov, crossings deepest, against the reference's intensity form (median / wor
     println!(
         "
 velinov deepest: exact window worst median {:.2e}, worst {:.2e}; frozen window worst median {:.2e}, worst {:.2e}; crossings summed (frozen) worst median {:.2e}, worst {:.2e}",
-        worst_med[0], worst_max[0], worst_med[1], worst_max[1], summed_worst.0, summed_worst.1
+        worst[0].0, worst[0].1, worst[1].0, worst[1].1, summed_worst.0, summed_worst.1
     );
     assert!(failures.is_empty(), "{}", failures.join("; "));
+}
+
+/// One crossing case with `crossings: deepest` and `model`, both windows (exact, frozen),
+/// against the reference's `<prefix>exact_deepest` and `<prefix>frozen_deepest` within
+/// issue #21's bounds (median ≤ 1e-3, worst ≤ 1e-2 over the directions above `1e-3` of the
+/// case's peak): the row's cells (median / worst), with `worst` (per window) and `failures`
+/// updated.
+fn deepest_cells(
+    golden: &Golden,
+    case: &Case,
+    model: Model,
+    prefix: &str,
+    worst: &mut [(f64, f64); 2],
+    failures: &mut Vec<String>,
+) -> [String; 2] {
+    let all = vec![true; case.wo.len()];
+    [Window::Exact, Window::Frozen].map(|window| {
+        let k = (window == Window::Frozen) as usize;
+        let variant = format!("{prefix}{}_deepest", ["exact", "frozen"][k]);
+        let mut params = golden.params;
+        params.model = model as u32;
+        params.window = window as u32;
+        params.crossings = Crossings::Deepest as u32;
+        let got = case.kernel(&params, golden.material);
+        let (med, max) = med_max(&rel_errors(&got, case.variant(&variant).unwrap(), &all));
+        worst[k] = (worst[k].0.max(med), worst[k].1.max(max));
+        if med > 1e-3 || max > 1e-2 {
+            failures.push(format!(
+                "{} ({variant}): median {med:.2e}, worst {max:.2e}",
+                case.name
+            ));
+        }
+        format!("{med:.2e} / {max:.2e}")
+    })
+}
+
+/// The reference's crossing cases (two grooves that overlap).
+fn crossing_cases(golden: &Golden) -> impl Iterator<Item = &Case> {
+    golden
+        .cases
+        .iter()
+        .filter(|c| matches!(c.kind, Kind::Crossing { .. }))
 }

@@ -167,6 +167,7 @@ fn sqrt4(x: [f32; 4]) -> [f32; 4] {
 
 impl<const N: usize> Real for Lanes<N> {
     type Mask = LaneMask<N>;
+    const LANES: usize = N;
     #[inline(always)]
     fn splat(x: f32) -> Self {
         Lanes([x; N])

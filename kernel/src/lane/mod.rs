@@ -45,6 +45,8 @@ pub trait Real:
 {
     /// The per-lane condition type.
     type Mask: Mask;
+    /// How many `f32` it holds (1 for `f32`).
+    const LANES: usize;
     /// `x` in every lane.
     fn splat(x: f32) -> Self;
     /// `self < o`.

@@ -17,6 +17,7 @@ impl Mask for bool {
 
 impl Real for f32 {
     type Mask = bool;
+    const LANES: usize = 1;
     #[inline(always)]
     fn splat(x: f32) -> f32 {
         x

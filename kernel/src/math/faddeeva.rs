@@ -76,9 +76,9 @@ pub fn faddeeva(z: C32) -> C32 {
 #[cfg_attr(not(target_arch = "spirv"), inline(always))]
 #[cfg_attr(target_arch = "spirv", inline(never))]
 pub fn faddeeva_lanes<R: Real>(z: Cx<R>) -> Cx<R> {
-    let mut chain = Chain::new(z);
+    let mut chain = settled::<R, _>(Chain::new(z));
     horner(&mut chain);
-    chain.value()
+    settled::<R, _>(chain.value())
 }
 
 /// `(w(a), w(b))`: two Horner chains advanced in the same loop, so that their latencies
@@ -87,9 +87,34 @@ pub fn faddeeva_lanes<R: Real>(z: Cx<R>) -> Cx<R> {
 #[cfg_attr(not(target_arch = "spirv"), inline(always))]
 #[cfg_attr(target_arch = "spirv", inline(never))]
 pub fn faddeeva_pair<R: Real>(a: Cx<R>, b: Cx<R>) -> (Cx<R>, Cx<R>) {
-    let mut chains = (Chain::new(a), Chain::new(b));
+    let mut chains = settled::<R, _>((Chain::new(a), Chain::new(b)));
     horner(&mut chains);
-    (chains.0.value(), chains.1.value())
+    settled::<R, _>((chains.0.value(), chains.1.value()))
+}
+
+/// `x` unchanged, passed through memory for lane types on the CPU (`core::hint::black_box`);
+/// the identity for `f32` (through memory the scalar Werner table ran 40 % slower) and on
+/// SPIR-V. Around the Horner loop (the chains going in, the values coming out) it keeps
+/// the loop's vector code independent of the code around the call: LLVM splits each lane
+/// array into scalars and its SLP vectorizer packs them again, and how it packed the loop's
+/// carried values depended on the rest of the SIMD batch (a change in the crossing walk
+/// re-packed them across real and imaginary parts: 55 instructions per step instead of
+/// 20, the frozen, summed batch 30 % slower). Through memory they come back as whole lane
+/// arrays. Costs about 32 instructions per call (`profile_brdf`, callgrind).
+#[inline(always)]
+fn settled<R: Real, T>(x: T) -> T {
+    #[cfg(not(target_arch = "spirv"))]
+    {
+        if R::LANES > 1 {
+            core::hint::black_box(x)
+        } else {
+            x
+        }
+    }
+    #[cfg(target_arch = "spirv")]
+    {
+        x
+    }
 }
 
 /// One argument's evaluation of `w`: `q = 1/(L − iz)`, `Z = (L + iz) q` and the Horner

@@ -110,23 +110,6 @@ impl<R: Real> ScratchTerms<R> {
             self.area_density = self.area_density + R::select(take, rho, R::splat(0.0));
         }
     }
-
-    /// Takes the overlap of scratches `a` and `b` out of ρc once (its second count), in the
-    /// lanes of `take`, when `q` asks for ρc.
-    #[inline(always)]
-    pub fn take_out_overlap_density(
-        &mut self,
-        a: (&Scratch, &SegmentFrame),
-        b: (&Scratch, &SegmentFrame),
-        q: &ResponseInputs<R>,
-        near: (Vec2, f32),
-        take: R::Mask,
-    ) {
-        if q.area_density {
-            let w = overlap_density_lanes(a, b, q.x0, q.sigma, q.window, near);
-            self.area_density = self.area_density - R::select(take, w, R::splat(0.0));
-        }
-    }
 }
 
 /// Scratch `s`'s term `S_k` for the queries of `q` (the one call of [`scratch_term_lanes`]
@@ -276,7 +259,7 @@ fn batch_walk<S: ScratchSet, const N: usize>(
     let union = radius + spread * (1.0 + 1.0e-5) + 1.0e-6 * radius;
     let near = (centre, union);
     let mut cursor = NearCursor::default();
-    // `me`: the candidate's place in the walk (the partner walk below counts the same way).
+    // `me`: the candidate's place in the walk (`deepest_step` counts the same way).
     let mut me = 0u32;
     while let Some(s) = set.next_near(&mut cursor, centre, union) {
         if let Some(frame) = s.frame() {
@@ -291,45 +274,63 @@ fn batch_walk<S: ScratchSet, const N: usize>(
             lane_use.candidates += 1;
             lane_use.lanes += n as u64;
             if n > 0 {
-                // What this candidate loses to each other one (deepest), and (once per pair,
-                // from the earlier one) the overlap's second count in ρc. One call site of
-                // the term either way (zero cut when summed: `x − 0` is `x`), so the batch
-                // carries one inlined copy of it.
-                let mut cut = Cx::zero();
-                if q.crossings == Crossings::Deepest {
-                    let mut other = NearCursor::default();
-                    let mut i = 0u32;
-                    while let Some(s2) = set.next_near(&mut other, centre, union) {
-                        if i != me
-                            && let Some(frame2) = s2.frame()
-                            && may_overlap(&frame, &s, &frame2, &s2)
-                        {
-                            let both = LaneMask(core::array::from_fn(|l| {
-                                if take.0[l] != 0 && s2.distance_to(points[l]) <= radius {
-                                    u32::MAX
-                                } else {
-                                    0
-                                }
-                            }));
-                            if both.0.iter().any(|&m| m != 0) {
-                                let (a, b) = ((&s, &frame), (&s2, &frame2));
-                                let c = cut_of(a, b, me < i, q, near);
-                                cut = cut + Cx::blend(both, c, Cx::zero());
-                                if me < i {
-                                    terms.take_out_overlap_density(a, b, q, near, both);
-                                }
-                            }
-                        }
-                        i += 1;
-                    }
-                }
-                terms.accumulate_less(&s, &frame, q, cut, take);
+                let sk = term_of(&s, &frame, q);
+                let (cut, overlap) = if q.crossings == Crossings::Deepest {
+                    deepest_cut(set, me, (&s, &frame), take, &points, q, near)
+                } else {
+                    (Cx::zero(), Lanes::splat(0.0))
+                };
+                terms.area_density = terms.area_density - overlap;
+                terms.add(sk - cut, &s, &frame, q, take);
             }
         }
         me += 1;
     }
     lane_use.batches += 1;
     terms
+}
+
+/// What one candidate of the batch loses with [`Crossings::Deepest`]: the sum of its
+/// [`cut_of`] over every other candidate, in the lanes that reach both, and the overlaps'
+/// second count in ρc (once per pair, at the earlier one), to subtract from its term and
+/// from ρc. The partners walked again over the batch's disk `near` ([`Partners`]; `me`: the
+/// candidate's number). Out of line, in the baseline instruction set as the corrections it
+/// calls, so that the SIMD batches hold one call for it and their own code stays small.
+#[cfg(not(target_arch = "spirv"))]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn deepest_cut<S: ScratchSet, const N: usize>(
+    set: &S,
+    me: u32,
+    a: (&Scratch, &SegmentFrame),
+    take: LaneMask<N>,
+    points: &[Vec2; N],
+    q: &ResponseInputs<Lanes<N>>,
+    near: (Vec2, f32),
+) -> (Cx<Lanes<N>>, Lanes<N>) {
+    let radius = CUTOFF_SIGMAS * q.sigma;
+    let zero = Lanes::splat(0.0);
+    let mut cut = Cx::zero();
+    let mut overlap = zero;
+    let mut partners = Partners::default();
+    while let Some((s2, frame2, i)) = partners.next(set, me, a, near) {
+        let both = LaneMask(core::array::from_fn(|l| {
+            if take.0[l] != 0 && s2.distance_to(points[l]) <= radius {
+                u32::MAX
+            } else {
+                0
+            }
+        }));
+        if both.0.iter().any(|&m| m != 0) {
+            let b = (&s2, &frame2);
+            cut = cut + Cx::blend(both, cut_of(a, b, me < i, q, near), Cx::zero());
+            if me < i && q.area_density {
+                let w = overlap_density_lanes(a, b, q.x0, q.sigma, q.window, near);
+                overlap = overlap + Lanes::select(both, w, zero);
+            }
+        }
+    }
+    (cut, overlap)
 }
 
 /// How well the lanes of [`scratch_response_batch`] were used: over all candidates, the
@@ -582,22 +583,49 @@ fn cuts_of<S: ScratchSet>(
 ) -> [Cx<f32>; MAX_SPECTRAL] {
     let mut cuts = [Cx::zero(); MAX_SPECTRAL];
     let near = (q.x0, CUTOFF_SIGMAS * q.sigma);
-    let mut other = NearCursor::default();
-    let mut i = 0u32;
-    while let Some(s2) = set.next_near(&mut other, near.0, near.1) {
-        if i != me
-            && let Some(frame2) = s2.frame()
-            && may_overlap(a.1, a.0, &frame2, &s2)
-        {
-            let mut j = 0;
-            while j < MAX_SPECTRAL && j < q.count as usize {
-                cuts[j] = cuts[j] + cut_of(a, (&s2, &frame2), me < i, &q.one(j), near);
-                j += 1;
-            }
+    let mut partners = Partners::default();
+    while let Some((s2, frame2, i)) = partners.next(set, me, a, near) {
+        let mut j = 0;
+        while j < MAX_SPECTRAL && j < q.count as usize {
+            cuts[j] = cuts[j] + cut_of(a, (&s2, &frame2), me < i, &q.one(j), near);
+            j += 1;
         }
-        i += 1;
     }
     cuts
+}
+
+/// The walk over a scratch's partners with [`Crossings::Deepest`]: the walk again from the
+/// start, counted as the walks count their scratches, so that `me < i` says which of the two
+/// comes first (the tie rule of [`cut_of`]).
+#[derive(Clone, Copy, Default)]
+struct Partners {
+    cursor: NearCursor,
+    count: u32,
+}
+
+impl Partners {
+    /// The next scratch in the disk `near` (centre, radius) that may overlap `a`, other than
+    /// `a` itself (the walk's scratch number `me`), with its frame and its number.
+    #[inline(always)]
+    fn next<S: ScratchSet>(
+        &mut self,
+        set: &S,
+        me: u32,
+        a: (&Scratch, &SegmentFrame),
+        near: (Vec2, f32),
+    ) -> Option<(Scratch, SegmentFrame, u32)> {
+        while let Some(s2) = set.next_near(&mut self.cursor, near.0, near.1) {
+            let i = self.count;
+            self.count += 1;
+            if i != me
+                && let Some(frame2) = s2.frame()
+                && may_overlap(a.1, a.0, &frame2, &s2)
+            {
+                return Some((s2, frame2, i));
+            }
+        }
+        None
+    }
 }
 
 /// [`Crossings::Deepest`] in ρc: the overlaps of `a` with every later scratch of the walk
