@@ -8,7 +8,7 @@ use scratchwave_kernel::ghs::g1::G1Table;
 use scratchwave_kernel::ghs::{self, GhsParams};
 use scratchwave_kernel::lane::{Lanes, V3};
 use scratchwave_kernel::scratch::response::CUTOFF_SIGMAS;
-use scratchwave_kernel::scratch::{LaneUse, Scratch, ScratchBvh};
+use scratchwave_kernel::scratch::{LaneUse, Scratch, ScratchBvh, Window};
 use scratchwave_kernel::table::{TableParams, TableQuery, evaluate, evaluate_batch, evaluate_ghs};
 use scratchwave_kernel::units::direction;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -137,7 +137,7 @@ impl LaneFn for ScratchTable<'_> {
     type Out = f32;
     #[inline(never)]
     fn lanes(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
-        self.batch(q)
+        self.batch::<false>(q)
     }
     fn one(&self, q: &TableQuery) -> f32 {
         evaluate(self.params, q, &self.set)
@@ -146,16 +146,22 @@ impl LaneFn for ScratchTable<'_> {
     #[inline(always)]
     unsafe fn lanes_avx2(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
         // SAFETY: the caller detected AVX2 and FMA (the trait's contract).
-        unsafe { batch_avx2(self, q) }
+        unsafe {
+            if Window::from_u32(self.params.window) == Window::Exact {
+                batch_avx2_exact(self, q)
+            } else {
+                batch_avx2(self, q)
+            }
+        }
     }
 }
 
 impl ScratchTable<'_> {
-    /// [`evaluate_batch`], counting lane use.
+    /// [`evaluate_batch`], counting lane use; `INLINE_EXACT` as there.
     #[inline(always)]
-    fn batch(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
+    fn batch<const INLINE_EXACT: bool>(&self, q: &[TableQuery; LANES]) -> [f32; LANES] {
         let mut u = LaneUse::default();
-        let v = evaluate_batch(self.params, q, &self.set, &mut u);
+        let v = evaluate_batch::<_, LANES, INLINE_EXACT>(self.params, q, &self.set, &mut u);
         let [b, c, l] = &self.use_counts;
         b.fetch_add(u.batches, Ordering::Relaxed);
         c.fetch_add(u.candidates, Ordering::Relaxed);
@@ -164,12 +170,22 @@ impl ScratchTable<'_> {
     }
 }
 
-/// [`ScratchTable::batch`] compiled for AVX2 + FMA, out of line ([`LaneFn::lanes_avx2`]).
+/// [`ScratchTable::batch`] compiled for AVX2 + FMA, out of line ([`LaneFn::lanes_avx2`]),
+/// for the frozen window (the exact window's term out of line).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 #[inline(never)]
 fn batch_avx2(t: &ScratchTable, q: &[TableQuery; LANES]) -> [f32; LANES] {
-    t.batch(q)
+    t.batch::<false>(q)
+}
+
+/// [`batch_avx2`] for tables with `window: exact`: an instance of its own with the exact
+/// window's term inline, so that it runs with AVX2 + FMA too.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[inline(never)]
+fn batch_avx2_exact(t: &ScratchTable, q: &[TableQuery; LANES]) -> [f32; LANES] {
+    t.batch::<true>(q)
 }
 
 /// Evaluates footprint queries `(scratch, ellipse)`.

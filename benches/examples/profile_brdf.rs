@@ -1,10 +1,11 @@
 //! Runs the BRDF workload of `benches/brdf.rs` in a loop for profilers
 //! (`perf record`, `valgrind --tool=callgrind`):
-//! `cargo run --release -p scratchwave-benches --example profile_brdf -- [werner|velinov] [scratches] [repeats] [scalar|simd]`
-//! (`simd`: the SIMD backend on one thread).
+//! `cargo run --release -p scratchwave-benches --example profile_brdf -- [werner|velinov] [scratches] [repeats] [scalar|simd] [frozen|exact]`
+//! (`simd`: the SIMD backend on one thread; `exact`: the exact across-groove window).
 
 use scratchwave_benches::{queries_near_specular, scratches_in_window};
 use scratchwave_cpu::{Backend, evaluate_table};
+use scratchwave_kernel::scratch::Window;
 use scratchwave_kernel::table::{Model, TableParams};
 
 fn main() {
@@ -21,11 +22,17 @@ fn main() {
     } else {
         Backend::Scalar
     };
+    let window = if args.get(4).map(String::as_str) == Some("exact") {
+        Window::Exact
+    } else {
+        Window::Frozen
+    };
     let scratches = scratches_in_window(n, 10.0, n as u64);
     let queries = queries_near_specular(4096, 7);
     let params = TableParams {
         model: model as u32,
         sigma_um: 10.0,
+        window: window as u32,
         ..TableParams::default()
     };
     let t = std::time::Instant::now();

@@ -23,8 +23,11 @@ use glam::{Vec2, Vec3};
 /// the instruction set of the caller (the SIMD backend's AVX2 + FMA dispatch); the scalar
 /// set-up and the lone queries are kept out of line (`prepare`, `finish`), so that the
 /// inlined code stays the lanes' arithmetic.
+///
+/// `INLINE_EXACT`: the exact window's term inline ([`scratch_response_batch`]), for an
+/// instance of its own that serves tables with `window: exact`.
 #[inline(always)]
-pub fn evaluate_batch<S: ScratchSet, const N: usize>(
+pub fn evaluate_batch<S: ScratchSet, const N: usize, const INLINE_EXACT: bool>(
     params: &TableParams,
     qs: &[TableQuery; N],
     set: &S,
@@ -51,7 +54,7 @@ pub fn evaluate_batch<S: ScratchSet, const N: usize>(
         crossings: m.crossings(),
         area_density: m.needs_area_density(),
     };
-    let terms = scratch_response_batch(set, &inputs, lane_use);
+    let terms = scratch_response_batch::<S, N, INLINE_EXACT>(set, &inputs, lane_use);
     let v = model_value_lanes(
         m.table_model(),
         m.base_gaussian == 1,
