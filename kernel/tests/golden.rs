@@ -162,6 +162,63 @@ fn faddeeva_matches_mpmath() {
     assert!(w < 2e-6, "faddeeva worst relative {w}");
 }
 
+/// Faddeeva's asymptotic series (`math::faddeeva_far_lanes`, for `|z|² ≥ 19.7`), dense on
+/// and just above its threshold, where it converges slowest, and out to `|z|` = 1e6
+/// (`kernel/gen/faddeeva_asymptotic.py`, whose float32 emulation of it has a worst of
+/// 2.3e-7). In `f32` and in 8 lanes, which must give the `f32` bits lane by lane.
+#[test]
+fn faddeeva_far_matches_mpmath() {
+    use scratchwave_kernel::lane::{Cx, Lanes};
+    let p = format!("{}/tests/data/faddeeva_far.csv", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&p)
+        .unwrap_or_else(|e| panic!("{p}: {e} (run python3 kernel/gen/faddeeva_asymptotic.py)"));
+    let rows: Vec<[f64; 4]> = text
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3]]
+        })
+        .collect();
+    assert!(rows.len() > 3000, "{} rows", rows.len());
+    let one = |r: &[f64; 4]| {
+        let z = Cx::new(r[0] as f32, r[1] as f32);
+        assert!(
+            z.norm_sqr() >= math::FADDEEVA_FAR,
+            "{z:?} inside the threshold"
+        );
+        let w = math::faddeeva_far_lanes(z);
+        C32::new(w.re, w.im)
+    };
+    let worst = rows
+        .iter()
+        .map(|r| cdiff(one(r), (r[2], r[3])) / cabs((r[2], r[3])))
+        .fold(0.0, f64::max);
+    eprintln!(
+        "faddeeva, asymptotic series: {} points, worst relative {worst:.3e}",
+        rows.len()
+    );
+    assert!(
+        worst < 1e-6,
+        "faddeeva asymptotic series worst relative {worst}"
+    );
+    for chunk in rows.chunks_exact(8) {
+        let re: Lanes<8> = Lanes(core::array::from_fn(|k| chunk[k][0] as f32));
+        let im: Lanes<8> = Lanes(core::array::from_fn(|k| chunk[k][1] as f32));
+        let w = math::faddeeva_far_lanes(Cx::new(re, im));
+        for (k, r) in chunk.iter().enumerate() {
+            let s = one(r);
+            assert_eq!(
+                (w.re.0[k].to_bits(), w.im.0[k].to_bits()),
+                (s.re.to_bits(), s.im.to_bits()),
+                "lane {k}, z = {}+{}i",
+                r[0],
+                r[1]
+            );
+        }
+    }
+}
+
 #[test]
 fn si_matches_mpmath() {
     let rows = csv("si.csv");

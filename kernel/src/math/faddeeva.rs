@@ -4,8 +4,18 @@
 //! function", SIAM J. Numer. Anal. 31(5), 1994) with N = 32:
 //! `w(z) = 2 p(Z) / (L − iz)² + 1 / (√π (L − iz))`, `Z = (L + iz)/(L − iz)`.
 //! One branch-free formula for the whole half plane (GPU friendly: no divergence, no
-//! recursion). The coefficients come from `kernel/gen/math_consts.py`. Accuracy against
-//! mpmath is measured by `kernel/tests/faddeeva.rs`.
+//! recursion). The coefficients come from `kernel/gen/math_consts.py`.
+//!
+//! Far from the origin, `|z|² ≥ 19.7`, a caller that knows its arguments lie there may take
+//! the asymptotic series `w(z) ~ (i/(√π z)) Σ_{n≥0} (2n−1)!!/(2z²)^n` instead
+//! ([`faddeeva_far_lanes`]; Abramowitz & Stegun 7.1.23 through `w(z) = e^{−z²} erfc(−iz)`):
+//! eleven terms, a third of Weideman's chain. There its f32 error is at the rounding floor
+//! (2.3e-7 relative at worst in a float32 emulation against mpmath, on and near the real
+//! axis just above the threshold, where the series converges slowest and the neglected
+//! `e^{−z²}` is below 1e-8 of `|w|`; `kernel/gen/faddeeva_asymptotic.py`). A choice per
+//! lane would cost both forms wherever lanes differ, so the choice is the caller's, made
+//! from what it knows of its arguments (`crate::math::gauss_interval`: a narrow interval's
+//! Faddeeva form). Accuracy of both against mpmath: `kernel/tests/golden.rs`.
 
 use super::complex::C32;
 use crate::lane::{Cx, Real, branch};
@@ -92,6 +102,39 @@ pub fn faddeeva_pair<R: Real>(a: Cx<R>, b: Cx<R>) -> (Cx<R>, Cx<R>) {
     settled::<R, _>((chains.0.value(), chains.1.value()))
 }
 
+/// The `|z|²` from which [`faddeeva_far_lanes`] may be used (module docs): `|z| ≥ 4.438`.
+pub const FADDEEVA_FAR: f32 = 19.7;
+
+/// The last power of `1/(2z²)` in [`faddeeva_far_lanes`]' series: its term
+/// `19!!/(2|z|²)^10` is below 8e-8 at the threshold.
+const ASYMPTOTIC_ORDER: f32 = 10.0;
+
+/// `w(z)` for `|z|² ≥` [`FADDEEVA_FAR`] only (`Im z < 0` reflected as in [`faddeeva`]): the
+/// asymptotic series `(i/(√π z)) Σ_{n≤10} (2n−1)!! (2z²)^{−n}` (A&S 7.1.23), nested as
+/// `1 + u(1 + 3u(1 + 5u(…)))` with `u = 1/(2z²)` formed from `1/z` (no overflow of `z²`).
+/// The caller guarantees the domain (nearer the origin the series is wrong); a third of
+/// Weideman's Horner chain.
+#[inline(always)]
+pub fn faddeeva_far_lanes<R: Real>(z: Cx<R>) -> Cx<R> {
+    let r = crecip(upper(z));
+    let u = (r * r).scale(R::splat(0.5));
+    let one = Cx::splat(1.0, 0.0);
+    let mut t = one;
+    // The odd factors 2n − 1 from n = 10 down to 1, counted in f32 (exact).
+    let mut odd = 2.0 * ASYMPTOTIC_ORDER - 1.0;
+    while odd > 0.0 {
+        t = one + (u * t).scale(R::splat(odd));
+        odd -= 2.0;
+    }
+    (r * t).mul_i().scale(R::splat(super::FRAC_1_SQRT_PI))
+}
+
+/// `z` with its imaginary part clamped at zero (the closed upper half plane).
+#[inline(always)]
+fn upper<R: Real>(z: Cx<R>) -> Cx<R> {
+    Cx::new(z.re, super::max(z.im, R::splat(0.0)))
+}
+
 /// `x` unchanged, passed through memory for lane types on the CPU (`core::hint::black_box`);
 /// the identity for `f32` (through memory the scalar Werner table ran 40 % slower) and on
 /// SPIR-V. Around the Horner loop (the chains going in, the values coming out) it keeps
@@ -130,8 +173,7 @@ struct Chain<R: Real> {
 impl<R: Real> Chain<R> {
     #[inline(always)]
     fn new(z: Cx<R>) -> Self {
-        let zl = Cx::new(z.re, super::max(z.im, R::splat(0.0)));
-        let iz = zl.mul_i();
+        let iz = upper(z).mul_i();
         // q = 1/(L − iz); |L − iz| ≥ L so q never blows up, and q² underflows benignly.
         let q = crecip(Cx::new(R::splat(L) - iz.re, -iz.im));
         Chain {

@@ -19,7 +19,7 @@ pub use atan::{acos, angle_between, asin, atan, atan2};
 pub use bessel::bessel_i0e;
 pub use complex::{C32, cis, cmul_i, cscale, csqrt, csqrt_cx};
 pub use expm1::{expm1, ln1p};
-pub use faddeeva::{faddeeva, faddeeva_lanes, faddeeva_pair};
+pub use faddeeva::{FADDEEVA_FAR, faddeeva, faddeeva_far_lanes, faddeeva_lanes, faddeeva_pair};
 pub use gamma::{gamma, gamma_inv, gamma_p, gamma_p_inv, gamma_q, gamma_q_inv, lgamma};
 pub use gauss_interval::{
     erf, gauss_fourier_centered, gauss_fourier_centered_lanes, gauss_fourier_interval,

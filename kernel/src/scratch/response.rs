@@ -282,7 +282,8 @@ fn batch_walk<S: ScratchSet, const N: usize, const INLINE_EXACT: bool>(
             lane_use.candidates += 1;
             lane_use.lanes += n as u64;
             if n > 0 {
-                let sk = if INLINE_EXACT && q.window == Window::Exact {
+                // `INLINE_EXACT` is instanced only for the exact window (above).
+                let sk = if INLINE_EXACT {
                     exact_window_term_inline(
                         &s,
                         &frame,
