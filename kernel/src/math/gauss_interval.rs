@@ -90,7 +90,11 @@ pub fn gauss_fourier_reduced_lanes<R: Real>(mid: R, half: R, sigma: R, nu: R) ->
 }
 
 /// [`gauss_fourier_centered_lanes`], or with `REDUCED` its form without the centre's phase.
-#[inline(always)]
+/// Out of line on SPIR-V: one copy of its four forms per `REDUCED` in the shader, where
+/// every interval integral of every walk would otherwise inline them (ARCHITECTURE.md
+/// *Shader size*); the CPU keeps it inline in each lane type.
+#[cfg_attr(not(target_arch = "spirv"), inline(always))]
+#[cfg_attr(target_arch = "spirv", inline(never))]
 fn centered<R: Real, const REDUCED: bool>(mid: R, half: R, sigma: R, nu: R) -> Cx<R> {
     let c = R::splat;
     let len = c(2.0) * half;
@@ -101,13 +105,8 @@ fn centered<R: Real, const REDUCED: bool>(mid: R, half: R, sigma: R, nu: R) -> C
     let series = short & (mid.abs() * half).le(c(SERIES_SLOPE) * sigma * sigma);
     // A narrow interval that is not short has `|ν| σ > 1`, so both its ends' Faddeeva
     // arguments have `|z|² ≥ y² = 2π²σ²ν² > 19.74`: Faddeeva's asymptotic series holds
-    // there. Where lanes differ, the short ones' Faddeeva value is discarded; they pass a
-    // frequency of 2/σ, which keeps their discarded arguments in that domain too.
-    let nu_far = if R::LANES > 1 {
-        Real::select(short, c(2.0) / sigma, nu)
-    } else {
-        nu
-    };
+    // there. Where lanes differ, the short lanes' values from that form (outside its
+    // domain, possibly not finite) are discarded lane by lane by `branch!`.
     branch!(
         half.gt(c(0.0)) & sigma.gt(c(0.0)),
         branch!(
@@ -118,7 +117,7 @@ fn centered<R: Real, const REDUCED: bool>(mid: R, half: R, sigma: R, nu: R) -> C
                 gauss_legendre::<R, REDUCED>(mid, half, sigma, nu),
                 branch!(
                     narrow,
-                    faddeeva_form::<R, REDUCED, true>(mid, half, sigma, nu_far),
+                    faddeeva_form::<R, REDUCED, true>(mid, half, sigma, nu),
                     faddeeva_form::<R, REDUCED, false>(mid, half, sigma, nu)
                 )
             )
@@ -212,10 +211,10 @@ fn faddeeva_form<R: Real, const REDUCED: bool, const FAR: bool>(
     let ((pa, pb), common) = branch!(
         same_side,
         (
-            (
-                cis_pi_lanes(c(2.0) * nu * half),
-                cis_pi_lanes(c(-2.0) * nu * half),
-            ),
+            {
+                let p = cis_pi_lanes(c(2.0) * nu * half);
+                (p, p.conj())
+            },
             if REDUCED {
                 Cx::splat(1.0, 0.0)
             } else {
@@ -518,9 +517,11 @@ mod tests {
                 }
             }
         }
-        extern crate std;
-        std::eprintln!(
-            "short intervals: {n} cases, worst relative {worst:.2e} (Gauss–Legendre {worst_gl:.2e})"
+        // The whole domain was covered, and the series is as accurate as the quadrature it
+        // replaces (worst 1.24e-5 against 1.11e-5, both the conditioning at large `m`).
+        assert!(
+            n >= 900 && worst <= 1.5 * worst_gl.max(1.0e-6),
+            "{n} cases, worst relative {worst:.2e} (Gauss–Legendre {worst_gl:.2e})"
         );
     }
 
@@ -573,9 +574,10 @@ mod tests {
                 }
             }
         }
-        extern crate std;
-        std::eprintln!(
-            "narrow intervals, asymptotic form: {n} cases, worst error {worst:.2e} of ∫|f|"
+        // Every case ran (worst measured 1.1e-5 of ∫|f|, the conditioning at large `m`).
+        assert!(
+            n == 29 * 8 * 12 && worst <= 2.0e-5,
+            "{n} cases, worst error {worst:.2e} of ∫|f|"
         );
     }
 }
