@@ -55,8 +55,9 @@ partly below); sigma 1-100 um, lambda 360-830 nm, W 0.1-50 um, D 1 nm - 10 um (l
 |x| 1 - 1e4 um; finite and infinite eta; small-angle and exact depth term; wo with
 cos(theta) 0.005 - 1 (`sweep_io.draw_wo`).
 
-Usage: python3 reference/light_sweep.py [--count N] [--seed-offset K] [--out DIR] [--check]
-Writes DIR/light.csv (default reference/golden/sweep/).
+Usage: python3 reference/light_sweep.py [--count N] [--seed-offset K] [--out DIR] [--jobs N] [--check]
+Writes DIR/light.csv (default reference/golden/sweep/). The queries are drawn in order and
+kept in order, so `--jobs N` (N worker processes) writes the same file as one process.
 """
 import math
 import sys
@@ -66,7 +67,7 @@ import mpmath as mp
 import numpy as np
 
 from scratch_sweep import s32, unit_tangent
-from sweep_io import draw_wo, f32, nudges, parse_args, progress, write_csv
+from sweep_io import draw_wo, f32, nudges, ordered_map, parse_args, progress, write_csv
 
 mp.mp.dps = 40
 
@@ -514,26 +515,36 @@ def check(count=40):
     return bad == 0 and worst_a < 1e-20
 
 
+def evaluate(q):
+    """The CSV row of query `q`, or None when it is redrawn (exact 0 beside a nonzero
+    neighbour)."""
+    base = Parts(q)
+    ref = base.total()
+    kappa, flip = conditioning(q, base)
+    if flip:
+        return None
+    lit = 0
+    if base.reg is not None:
+        lit = sum(len(Band(s, base.wo).lit(base.reg[0])) for s in q["scratches"])
+    return row(q, ref, kappa, lit, band_parameter_conditioning(base))
+
+
 def main():
     if "--check" in sys.argv:
         sys.argv.remove("--check")
         sys.exit(0 if check() else 1)
-    args = parse_args(1500)
+    args = parse_args(1500, jobs=True)
     rng = np.random.default_rng(20_020 + args.seed_offset)
     rows, redrawn, t0 = [], 0, time.time()
     while len(rows) < args.count:
-        q = draw(rng)
-        base = Parts(q)
-        ref = base.total()
-        kappa, flip = conditioning(q, base)
-        if flip:
-            redrawn += 1
-            continue
-        lit = 0
-        if base.reg is not None:
-            lit = sum(len(Band(s, base.wo).lit(base.reg[0])) for s in q["scratches"])
-        rows.append(row(q, ref, kappa, lit, band_parameter_conditioning(base)))
-        progress(len(rows), args.count, 100)
+        # as many draws as rows still wanted: the ones a one-at-a-time loop would make next
+        batch = [draw(rng) for _ in range(args.count - len(rows))]
+        for r in ordered_map(evaluate, batch, args.jobs):
+            if r is None:
+                redrawn += 1
+                continue
+            rows.append(r)
+            progress(len(rows), args.count, 100)
     print(f"{len(rows)} queries ({redrawn} redrawn: exact 0 beside a nonzero neighbour), "
           f"{time.time() - t0:.0f} s", file=sys.stderr)
     write_csv(args.out, "light", header(), rows)

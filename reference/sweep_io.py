@@ -4,6 +4,7 @@ direction helpers in mpmath."""
 import argparse
 import math
 import sys
+from multiprocessing import Pool
 from pathlib import Path
 
 import mpmath as mp
@@ -21,13 +22,26 @@ def nudges(x):
     return [float(np.nextafter(x, np.float32(np.inf))), float(np.nextafter(x, np.float32(-np.inf)))]
 
 
-def parse_args(default_count):
-    """`--count N --seed-offset K --out DIR` (DIR default `reference/golden/sweep/`)."""
+def parse_args(default_count, jobs=False):
+    """`--count N --seed-offset K --out DIR` (DIR default `reference/golden/sweep/`), and
+    `--jobs N` where the sweep evaluates in parallel (`ordered_map`)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--count", type=int, default=default_count)
     ap.add_argument("--seed-offset", type=int, default=0)
     ap.add_argument("--out", default=str(Path(__file__).resolve().parent / "golden" / "sweep"))
+    if jobs:
+        ap.add_argument("--jobs", type=int, default=1, help="worker processes (default 1: this one)")
     return ap.parse_args()
+
+
+def ordered_map(fn, items, jobs):
+    """`fn` over `items`, results in their order: in this process for `jobs` <= 1, else in a
+    pool of `jobs` workers (so a sweep's output does not depend on `jobs`)."""
+    if jobs <= 1:
+        yield from map(fn, items)
+        return
+    with Pool(jobs) as pool:
+        yield from pool.imap(fn, items, chunksize=8)
 
 
 def progress(done, count, every=100):

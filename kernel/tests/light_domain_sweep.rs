@@ -28,15 +28,18 @@
 //!
 //! The committed subset (`reference/golden/sweep/light.csv`) runs by default; a larger
 //! sample (`python3 reference/light_sweep.py --count N --seed-offset K --out DIR`) with
-//! `LIGHT_SWEEP_DIR=DIR`.
+//! `LIGHT_SWEEP_DIR=DIR`. `LIGHT_SWEEP_DUMP=FILE` writes every query's kind, angular
+//! radius, elevation, distance, error and both bounds for the stability map
+//! (`docs/light_stability_map.py`).
 
 mod sweep_common;
 
 use scratchwave_kernel::lights::light_integral;
 use scratchwave_kernel::scratch::ScratchSlice;
 use std::collections::BTreeMap;
+use std::fmt::Write as _;
 use sweep_common::{
-    K, K_LIGHT, Row, Stat, Table, check_size, light_group, light_query, rel, report,
+    K, K_LIGHT, Row, Stat, Table, bound_with, check_size, light_group, light_query, rel, report,
 };
 
 /// The committed subset's size (the test refuses fewer).
@@ -47,6 +50,24 @@ const MIN_QUERIES: usize = 1500;
 /// of their roots, 14 since the band circle keeps `cos φ`, 225 before), so that a change
 /// can only lower it.
 const RATCHET_OVER_8K: usize = 6;
+
+/// The light's distance from the origin in the units the row is written in: the sphere's
+/// centre, or the mean of the polygon's vertices.
+fn distance(r: &Row) -> f64 {
+    let c = if r.u("kind") == 0 {
+        [r.d("l_x"), r.d("l_y"), r.d("l_z")]
+    } else {
+        let n = r.u("count");
+        let mut c = [0.0; 3];
+        for i in 0..n {
+            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                c[k] += r.d(&format!("v{i}_{axis}")) / f64::from(n);
+            }
+        }
+        c
+    };
+    c.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
 
 /// The kernel's value of one row.
 fn kernel_value(r: &Row) -> f32 {
@@ -62,6 +83,7 @@ fn light_integral_is_within_its_bound_over_the_domain() {
     // against the inputs' conditioning κ alone, and against max(κ, κ_s)
     let mut strict: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
     let mut stats: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
+    let mut dump = String::from("kind,alpha,elev,distance,err,bound,bound_inputs\n");
     for r in table.rows() {
         let ((ki, si), name) = light_group(&r, &mut names);
         let got = kernel_value(&r);
@@ -82,6 +104,19 @@ fn light_integral_is_within_its_bound_over_the_domain() {
             .entry(((ki, si), name))
             .or_default()
             .add_with(K_LIGHT, err, kappa.max(kappa_s), text);
+        writeln!(
+            dump,
+            "{ki},{:e},{:e},{:e},{err:e},{:e},{:e}",
+            r.d("alpha"),
+            r.d("elev"),
+            distance(&r),
+            bound_with(K_LIGHT, kappa.max(kappa_s)),
+            bound_with(K, kappa)
+        )
+        .unwrap();
+    }
+    if let Ok(path) = std::env::var("LIGHT_SWEEP_DUMP") {
+        std::fs::write(&path, dump).unwrap();
     }
     println!("against max(1e-4, 8κ), κ the inputs' one-ulp conditioning:");
     report(&strict, 34);

@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+"""Stability map of the area-light integral (issue #20): worst err/bound of the f32 kernel's
+lights::light_integral (Velinov Eq. 27's single band, exact Si) over (angular radius, distance)
+and (angular radius, height of the light's lowest point above the horizon), for spheres with
+the asin and the atan cone and for convex polygons, as docs/light-stability.svg.
+
+err is the kernel's relative error against the mpmath reference at the same f32 inputs
+(reference/light_sweep.py, committed subset reference/golden/sweep/light.csv). Two bounds, one
+column each: the light family's max(1e-4, 16 max(kappa, kappa_s)), which the test asserts
+(kappa the query's one-ulp conditioning over its inputs, kappa_s the one-ulp resolution of a
+band parameter s = sin phi kept alone), and the other sweeps' max(1e-4, 8 kappa), which the
+kernel does not meet everywhere yet (docs/stability.md, Area lights). A cell shows the largest
+err/bound of its queries (> 1 is over). Distance is the light centre's (a polygon's vertex
+mean) distance from the origin in the units the query is written in (m, mm or um: the f32
+magnitudes the kernel works with); the height is elev - alpha (elevation of the light's
+centre minus its angular radius), at most 1e-7 drawn in the bottom row (at or below the
+horizon).
+
+  python3 docs/light_stability_map.py                      # runs the sweep test, redraws
+  python3 docs/light_stability_map.py --dir DIR [--dir ..] # adds LIGHT_SWEEP_DIR samples
+  python3 docs/light_stability_map.py --dump FILE [...]    # from LIGHT_SWEEP_DUMP files
+
+Python standard library only; the colours and drawing conventions are
+docs/ghs_stability_map.py's.
+"""
+import argparse
+import math
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from ghs_stability_map import cell, colour, colour_bar, read_dump, run_sweep_test  # noqa: E402
+
+SVG = os.path.join(HERE, "light-stability.svg")
+
+KINDS = [("0", "sphere, asin cone"), ("1", "sphere, atan cone"), ("2", "polygon")]
+# log10 axes: (lo, hi, cells)
+AX = (-5.0, 0.5, 11)  # angular radius alpha (rad)
+MAPS = [
+    ("distance", "α × distance", (-3.0, 7.0, 10), "distance (scene units)"),
+    ("height", "α × height above the horizon", (-7.0, 0.5, 15), "elev − α (rad)"),
+]
+BOUNDS = [("bound", "16·max(κ, κs)"), ("bound_inputs", "8κ")]
+HEIGHT_FLOOR = 1e-7
+
+
+def y_value(r, key):
+    if key == "distance":
+        return float(r["distance"])
+    return max(float(r["elev"]) - float(r["alpha"]), HEIGHT_FLOOR)
+
+
+def grid(rows):
+    """{(kind, map, bound, ix, iy): (max err/bound, count)} from dump rows."""
+    g = {}
+    for r in rows:
+        ix = cell(math.log10(float(r["alpha"])), *AX)
+        for key, _, ya, _ in MAPS:
+            iy = cell(math.log10(y_value(r, key)), *ya)
+            for b, _ in BOUNDS:
+                k = (r["kind"], key, b, ix, iy)
+                m, n = g.get(k, (0.0, 0))
+                g[k] = (max(m, float(r["err"]) / float(r[b])), n + 1)
+    return g
+
+
+def draw(g, n_rows, source, path):
+    cw, ch = 22, 14
+    left, top, gapx, gapy = 70, 66, 100, 74
+    pw = AX[2] * cw
+    panels = [(kind, klabel, m) for kind, klabel in KINDS for m in MAPS]
+    width = left + 2 * pw + gapx + 150
+    height = top + sum(m[2][2] * ch + gapy for _, _, m in panels) + 30
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
+           '<rect width="100%" height="100%" fill="white"/>',
+           '<text x="%d" y="18" font-size="13">Area lights (Velinov Eq. 27, exact Si) vs mpmath at the same f32 inputs: worst err / bound per cell</text>' % left,
+           '<text x="%d" y="34" fill="#555">python3 docs/light_stability_map.py %s</text>' % (left, source),
+           '<text x="%d" y="50" fill="#555">%d queries; bound = max(1e-4, K·κ): left the light family&apos;s 16·max(κ, κs) (asserted), right the inputs&apos; 8κ</text>' % (left, n_rows)]
+    y0 = top
+    for kind, klabel, (key, mlabel, ya, yl) in panels:
+        y0 += 14
+        ph = ya[2] * ch
+        for col, (b, blabel) in enumerate(BOUNDS):
+            x0 = left + col * (pw + gapx)
+            vals = [v[0] for k, v in g.items() if k[:3] == (kind, key, b)]
+            status = "worst %.3g" % max(vals) if vals else "no query"
+            out.append('<text x="%d" y="%d" font-size="12">%s, %s: %s</text>' % (x0, y0 - 4, klabel, blabel, status))
+            for ix in range(AX[2]):
+                for iy in range(ya[2]):
+                    v = g.get((kind, key, b, ix, iy))
+                    fill = colour(v[0]) if v else "#e6e6e6"
+                    title = "<title>%.3g over %d queries</title>" % v if v else ""
+                    out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="%s" stroke="white" stroke-width="0.5">%s</rect>'
+                               % (x0 + ix * cw, y0 + (ya[2] - 1 - iy) * ch, cw, ch, fill, title))
+            for e in range(math.ceil(AX[0]), math.floor(AX[1]) + 1):
+                x = x0 + (e - AX[0]) / (AX[1] - AX[0]) * pw
+                out.append('<text x="%.1f" y="%d" text-anchor="middle">1e%d</text>' % (x, y0 + ph + 13, e))
+            out.append('<text x="%.1f" y="%d" text-anchor="middle">angular radius α (rad)</text>' % (x0 + pw / 2, y0 + ph + 27))
+            step = 2 if ya[1] - ya[0] > 7 else 1
+            for e in range(math.ceil(ya[0]), math.floor(ya[1]) + 1, step):
+                y = y0 + ph - (e - ya[0]) / (ya[1] - ya[0]) * ph
+                lab = "≤1e%d" % e if key == "height" and e == ya[0] else "1e%d" % e
+                out.append('<text x="%d" y="%.1f" text-anchor="end" dominant-baseline="middle">%s</text>' % (x0 - 4, y, lab))
+            out.append('<text x="%d" y="%.1f" text-anchor="middle" transform="rotate(-90 %d %.1f)">%s</text>'
+                       % (x0 - 48, y0 + ph / 2, x0 - 48, y0 + ph / 2, yl))
+        y0 += ph + gapy - 14
+    bx, by = left + 2 * pw + gapx + 30, top + 14
+    out += colour_bar(bx, by, 2 * AX[2] * ch)
+    out.append('<text x="%d" y="%d">err/bound</text>' % (bx - 4, by - 14))
+    out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; bottom row of the height maps: the light reaches the horizon or below</text>' % (left, height - 12))
+    out.append("</svg>")
+    with open(path, "w") as fh:
+        fh.write("\n".join(out) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--dir", action="append", default=[], help="a LIGHT_SWEEP_DIR sample to add (repeatable)")
+    ap.add_argument("--dump", action="append", default=[], help="LIGHT_SWEEP_DUMP files to draw instead of running cargo")
+    a = ap.parse_args()
+    if a.dump:
+        rows = [r for path in a.dump for r in read_dump(path)]
+        source = "(from dumps)"
+    else:
+        rows = run_sweep_test("light_domain_sweep", "LIGHT_SWEEP_DUMP")
+        for d in a.dir:
+            os.environ["LIGHT_SWEEP_DIR"] = d
+            rows += run_sweep_test("light_domain_sweep", "LIGHT_SWEEP_DUMP")
+        os.environ.pop("LIGHT_SWEEP_DIR", None)
+        source = "(committed subset)" if not a.dir else "(committed subset + %d --dir sample%s)" % (len(a.dir), "s" * (len(a.dir) > 1))
+    g = grid(rows)
+    draw(g, len(rows), source, SVG)
+    for kind, klabel in KINDS:
+        for b, blabel in BOUNDS:
+            vals = [v for k, v in g.items() if k[0] == kind and k[1] == MAPS[0][0] and k[2] == b]
+            worst = max((v[0] for v in vals), default=0.0)
+            over = sum(1 for r in rows if r["kind"] == kind and float(r["err"]) > float(r[b]))
+            print("%s, against %s: worst err/bound %.3g, %d queries over" % (klabel, blabel, worst, over))
+    print("wrote", SVG)
+
+
+if __name__ == "__main__":
+    main()
