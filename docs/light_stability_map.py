@@ -5,11 +5,13 @@ and (angular radius, height of the light's lowest point above the horizon), for 
 the asin and the atan cone and for convex polygons, as docs/light-stability.svg.
 
 err is the kernel's relative error against the mpmath reference at the same f32 inputs
-(reference/light_sweep.py, committed subset reference/golden/sweep/light.csv). Two bounds, one
-column each: the light family's max(1e-4, 16 max(kappa, kappa_s)), which the test asserts
-(kappa the query's one-ulp conditioning over its inputs, kappa_s the one-ulp resolution of a
-band parameter s = sin phi kept alone), and the other sweeps' max(1e-4, 8 kappa), which the
-kernel does not meet everywhere yet (docs/stability.md, Area lights). A cell shows the largest
+(reference/light_sweep.py, committed subset reference/golden/sweep/light.csv and the found
+queries light_found.csv). Two bounds, one column each: the light family's
+max(1e-4, 16 max(kappa, kappa_s)), which the test asserts (kappa the query's one-ulp
+conditioning over its inputs, kappa_s the one-ulp resolution of a band parameter
+s = sin phi kept alone; an exact 0 counts err 0 up to its 16-ulp reach), and the other
+sweeps' max(1e-4, 8 kappa), which the kernel does not meet everywhere yet (docs/stability.md,
+Area lights; an exact 0 there must come out below 1e-30). A cell shows the largest
 err/bound of its queries (> 1 is over). Distance is the light centre's (a polygon's vertex
 mean) distance from the origin in the units the query is written in (m, mm or um: the f32
 magnitudes the kernel works with); the height is elev - alpha (elevation of the light's
@@ -41,7 +43,8 @@ MAPS = [
     ("distance", "α × distance", (-3.0, 7.0, 10), "distance (scene units)"),
     ("height", "α × height above the horizon", (-7.0, 0.5, 15), "elev − α (rad)"),
 ]
-BOUNDS = [("bound", "16·max(κ, κs)"), ("bound_inputs", "8κ")]
+# (error column, bound column, label); dumps written before `err_inputs` existed use `err`
+BOUNDS = [("err", "bound", "16·max(κ, κs)"), ("err_inputs", "bound_inputs", "8κ")]
 HEIGHT_FLOOR = 1e-7
 
 
@@ -51,6 +54,10 @@ def y_value(r, key):
     return max(float(r["elev"]) - float(r["alpha"]), HEIGHT_FLOOR)
 
 
+def err(r, column):
+    return float(r.get(column, r["err"]))
+
+
 def grid(rows):
     """{(kind, map, bound, ix, iy): (max err/bound, count)} from dump rows."""
     g = {}
@@ -58,10 +65,10 @@ def grid(rows):
         ix = cell(math.log10(float(r["alpha"])), *AX)
         for key, _, ya, _ in MAPS:
             iy = cell(math.log10(y_value(r, key)), *ya)
-            for b, _ in BOUNDS:
+            for e, b, _ in BOUNDS:
                 k = (r["kind"], key, b, ix, iy)
                 m, n = g.get(k, (0.0, 0))
-                g[k] = (max(m, float(r["err"]) / float(r[b])), n + 1)
+                g[k] = (max(m, err(r, e) / float(r[b])), n + 1)
     return g
 
 
@@ -81,7 +88,7 @@ def draw(g, n_rows, source, path):
     for kind, klabel, (key, mlabel, ya, yl) in panels:
         y0 += 14
         ph = ya[2] * ch
-        for col, (b, blabel) in enumerate(BOUNDS):
+        for col, (_, b, blabel) in enumerate(BOUNDS):
             x0 = left + col * (pw + gapx)
             vals = [v[0] for k, v in g.items() if k[:3] == (kind, key, b)]
             status = "worst %.3g" % max(vals) if vals else "no query"
@@ -128,14 +135,14 @@ def main():
             os.environ["LIGHT_SWEEP_DIR"] = d
             rows += run_sweep_test("light_domain_sweep", "LIGHT_SWEEP_DUMP")
         os.environ.pop("LIGHT_SWEEP_DIR", None)
-        source = "(committed subset)" if not a.dir else "(committed subset + %d --dir sample%s)" % (len(a.dir), "s" * (len(a.dir) > 1))
+        source = "(committed subset and found queries)" if not a.dir else "(committed subset and found queries + %d --dir sample%s)" % (len(a.dir), "s" * (len(a.dir) > 1))
     g = grid(rows)
     draw(g, len(rows), source, SVG)
     for kind, klabel in KINDS:
-        for b, blabel in BOUNDS:
+        for e, b, blabel in BOUNDS:
             vals = [v for k, v in g.items() if k[0] == kind and k[1] == MAPS[0][0] and k[2] == b]
             worst = max((v[0] for v in vals), default=0.0)
-            over = sum(1 for r in rows if r["kind"] == kind and float(r["err"]) > float(r[b]))
+            over = sum(1 for r in rows if r["kind"] == kind and err(r, e) > float(r[b]))
             print("%s, against %s: worst err/bound %.3g, %d queries over" % (klabel, blabel, worst, over))
     print("wrote", SVG)
 

@@ -39,7 +39,10 @@ conditioning but the resolution of that representation, which near the horizon
 (|s| -> 1) and for chords much shorter than |s| is far coarser than the inputs. The
 kernel test accepts err <= max(1e-4, 16 max(kappa, kappa_s)) and reports the inputs' rule
 max(1e-4, 8 kappa) (`kernel/tests/light_domain_sweep.rs`, `docs/stability.md`
-*Area lights*). The extent rule (bands = 20) is not swept.
+*Area lights*). Where the exact value is 0, a relative bound says nothing: such a query
+carries `reach`, the largest exact value when one input moves by 16 float32 ulps either
+way (the bound's 16 steps taken literally rather than linearly), and the test accepts
+anything up to it (below 1e-30 where it is 0). The extent rule (bands = 20) is not swept.
 
 Domain: sphere lights with the asin cone (35 %, 3 % of them around the shading point) and
 the atan cone (15 %), convex polygons of 3-8 vertices (50 %, a circle or ellipse of
@@ -58,6 +61,8 @@ cos(theta) 0.005 - 1 (`sweep_io.draw_wo`).
 Usage: python3 reference/light_sweep.py [--count N] [--seed-offset K] [--out DIR] [--jobs N] [--check]
 Writes DIR/light.csv (default reference/golden/sweep/). The queries are drawn in order and
 kept in order, so `--jobs N` (N worker processes) writes the same file as one process.
+`--found [--out DIR]` writes DIR/light_found.csv instead: the queries larger samples found
+over the bound (FOUND), regenerated from their seed and draw index.
 """
 import math
 import sys
@@ -73,6 +78,11 @@ mp.mp.dps = 40
 
 MAX_V = 8
 MAX_S = 3
+# The steps of `zero_reach`: the kernel test's K_LIGHT (`kernel/tests/sweep_common`).
+REACH_ULPS = 16
+# Queries found over the bound in larger samples, kept in `light_found.csv` (`--found`):
+# (seed offset, index of the draw in that seed's sequence, redrawn ones included).
+FOUND = [(2, 28870)]
 F32_1E3 = f32(1.0e-3)
 
 
@@ -301,11 +311,12 @@ def copy_query(q):
     return q2
 
 
-def neighbours(q):
-    """(kind, query) for every one-ulp change of one float32 input; kind says which
-    factors change: 'all', 'p' (P_k of every scratch), or (k, 'p'/'l'/'pl'/'d')."""
+def neighbours(q, ulps=1):
+    """(kind, query) for every change of one float32 input by `ulps` float32 steps either
+    way; kind says which factors change: 'all', 'p' (P_k of every scratch), or
+    (k, 'p'/'l'/'pl'/'d')."""
     def each(get, put, kind):
-        for y in nudges(get(q)):
+        for y in nudges(get(q), ulps):
             q2 = copy_query(q)
             put(q2, y)
             yield kind, q2
@@ -365,6 +376,15 @@ def conditioning(q, base):
         else:
             kap = max(kap, float(abs(v / ref - 1)))
     return kap, flip
+
+
+def zero_reach(q):
+    """For a query whose exact value is 0 (and every one-ulp neighbour's too): the largest
+    exact value when one float32 input moves by REACH_ULPS float32 steps either way. The
+    test's rule for an exact 0: the kernel may return up to this, i.e. what the exact
+    function gives at inputs as far off as the bound `16 max(kappa, kappa_s)` lets a
+    nonzero value be (its linear analogue); 0 where no such move lights anything."""
+    return max((value(q2) for _, q2 in neighbours(q, REACH_ULPS)), default=mp.mpf(0))
 
 
 # ------------------------------------------------------------------ drawing (float64)
@@ -456,10 +476,10 @@ def header():
     h += ["v%d_%s" % (i, c) for i in range(MAX_V) for c in "xyz"]
     h += ["wo_x", "wo_y", "wo_z", "lambda_nm", "x_x", "x_y", "sigma", "eta", "depth_term", "n"]
     h += ["s%d_%s" % (i, k) for i in range(MAX_S) for k in ("cx", "cy", "tx", "ty", "h", "w", "d", "profile")]
-    return h + ["alpha", "elev", "lit", "ref", "kappa", "kappa_s"]
+    return h + ["alpha", "elev", "lit", "ref", "kappa", "kappa_s", "reach"]
 
 
-def row(q, ref, kappa, lit, kappa_s):
+def row(q, ref, kappa, lit, kappa_s, reach):
     r = [str(q["kind"]), str(q["cone"]), str(len(q["verts"]))] + [s32(v) for v in q["sphere"]]
     for i in range(MAX_V):
         r += [s32(c) for c in q["verts"][i]] if i < len(q["verts"]) else ["0"] * 3
@@ -472,7 +492,8 @@ def row(q, ref, kappa, lit, kappa_s):
         else:
             r += ["0"] * 8
     r += ["%.6g" % q["alpha"], "%.6g" % q["elev"], str(lit)]
-    return r + [mp.nstr(ref, 17, min_fixed=1, max_fixed=0), "%.4g" % kappa, "%.4g" % kappa_s]
+    r += [mp.nstr(ref, 17, min_fixed=1, max_fixed=0), "%.4g" % kappa, "%.4g" % kappa_s]
+    return r + [mp.nstr(reach, 6, min_fixed=1, max_fixed=0)]
 
 
 # ------------------------------------------------------------------ self-check
@@ -526,13 +547,32 @@ def evaluate(q):
     lit = 0
     if base.reg is not None:
         lit = sum(len(Band(s, base.wo).lit(base.reg[0])) for s in q["scratches"])
-    return row(q, ref, kappa, lit, band_parameter_conditioning(base))
+    reach = zero_reach(q) if ref == 0 else mp.mpf(0)
+    return row(q, ref, kappa, lit, band_parameter_conditioning(base), reach)
+
+
+def found(out):
+    """`out/light_found.csv`: the FOUND draws, evaluated (none of them is redrawn)."""
+    rows = []
+    for offset, index in FOUND:
+        rng = np.random.default_rng(20_020 + offset)
+        for _ in range(index):
+            draw(rng)
+        r = evaluate(draw(rng))
+        if r is None:
+            sys.exit(f"draw {index} of seed offset {offset} is redrawn")
+        rows.append(r)
+    write_csv(out, "light_found", header(), rows)
 
 
 def main():
     if "--check" in sys.argv:
         sys.argv.remove("--check")
         sys.exit(0 if check() else 1)
+    if "--found" in sys.argv:
+        sys.argv.remove("--found")
+        found(parse_args(0).out)
+        return
     args = parse_args(1500, jobs=True)
     rng = np.random.default_rng(20_020 + args.seed_offset)
     rows, redrawn, t0 = [], 0, time.time()

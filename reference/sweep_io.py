@@ -16,10 +16,15 @@ def f32(x):
     return float(np.float32(x))
 
 
-def nudges(x):
-    """The float32 neighbours of float32 `x`, above and below."""
-    x = np.float32(x)
-    return [float(np.nextafter(x, np.float32(np.inf))), float(np.nextafter(x, np.float32(-np.inf)))]
+def nudges(x, ulps=1):
+    """The float32 values `ulps` float32 steps above and below float32 `x`."""
+    out = []
+    for toward in (np.float32(np.inf), np.float32(-np.inf)):
+        y = np.float32(x)
+        for _ in range(ulps):
+            y = np.nextafter(y, toward)
+        out.append(float(y))
+    return out
 
 
 def parse_args(default_count, jobs=False):

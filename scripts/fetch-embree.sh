@@ -58,7 +58,7 @@ actual=$(sha256sum "$WHEEL" | cut -d' ' -f1)
 
 mkdir -p "$WORK/lib"
 python3 - "$WHEEL" "$WORK/lib" "${LIBS[@]}" <<'PY' || die "could not extract the libraries from the wheel"
-import os, sys, zipfile
+import calendar, os, sys, zipfile
 
 wheel, out, wanted = sys.argv[1], sys.argv[2], sys.argv[3:]
 with zipfile.ZipFile(wheel) as z:
@@ -66,8 +66,14 @@ with zipfile.ZipFile(wheel) as z:
     for lib in wanted:
         if lib not in by_name:
             sys.exit(f"{lib} is not in the wheel")
-        with z.open(by_name[lib]) as src, open(os.path.join(out, lib), "wb") as dst:
+        path = os.path.join(out, lib)
+        with z.open(by_name[lib]) as src, open(path, "wb") as dst:
             dst.write(src.read())
+        # the wheel's own timestamp, not the time of extraction: the same pinned file gets
+        # the same mtime in every clone, so cargo does not rebuild what links it
+        # (backend-embree/build.rs watches the library)
+        t = calendar.timegm(z.getinfo(by_name[lib]).date_time + (0, 0, 0))
+        os.utime(path, (t, t))
 PY
 
 # Install atomically: build the final tree beside DEST, then swap it in.
@@ -76,7 +82,7 @@ STAGE=$(mktemp -d "$(dirname "$DEST")/.embree-stage.XXXXXX")
 chmod 755 "$STAGE"
 mkdir -p "$STAGE/lib"
 for lib in "${LIBS[@]}"; do
-    install -m 0755 "$WORK/lib/$lib" "$STAGE/lib/$lib"
+    install -p -m 0755 "$WORK/lib/$lib" "$STAGE/lib/$lib"
 done
 ln -s libembree4.so.4 "$STAGE/lib/libembree4.so"
 cat >"$STAGE/SOURCE" <<INFO

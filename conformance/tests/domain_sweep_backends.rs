@@ -17,9 +17,10 @@
 //!   sweep's constants (`K = 8` for the closed forms, 16 for the accurate average;
 //!   `kernel/tests/footprint_domain_sweep.rs`).
 //!
-//! * Area lights (`reference/golden/sweep/light.csv`): Velinov Eq. 27's single band through
-//!   a light batch (one query per batch), held to the light sweep's bound
-//!   `max(1e-4, 16·max(κ, κs))` (`kernel/tests/light_domain_sweep.rs`).
+//! * Area lights (`reference/golden/sweep/light.csv` and `light_found.csv`): Velinov Eq.
+//!   27's single band through a light batch (one query per batch), held to the light
+//!   sweep's bound `max(1e-4, 16·max(κ, κs))`, an exact 0 to its 16-ulp reach
+//!   (`kernel/tests/light_domain_sweep.rs`).
 //!
 //! Run with `--nocapture` for the per-backend tables.
 
@@ -33,8 +34,8 @@ use scratchwave_kernel::table::{TableParams, TableQuery};
 use scratchwave_kernel::units::{UNIT_TOLERANCE, um_from_nm};
 use std::collections::BTreeMap;
 use sweep_common::{
-    FLOOR, K, K_LIGHT, SCRATCH_FAMILIES, Stat, Table, footprint_inputs, ghs_params, light_query,
-    rel, report, scratch_query,
+    FLOOR, K, K_LIGHT, SCRATCH_FAMILIES, Stat, Table, footprint_inputs, ghs_params, light_err,
+    light_query, light_reach, rel, report, scratch_query,
 };
 
 /// One sweep query as a batch, with its exact value, κ and report group.
@@ -157,17 +158,27 @@ fn footprint_cases() -> Vec<FootprintCase> {
         .collect()
 }
 
-/// One light-sweep query as a batch, with its exact value and `max(κ, κs)`.
+/// One light-sweep query as a batch, with its exact value, `max(κ, κs)` and reach.
 struct LightCase {
     batch: LightBatch,
     exact: f64,
     kappa: f64,
+    reach: f64,
     row: String,
 }
 
+/// The light sweep's subset (or `LIGHT_SWEEP_DIR`'s sample) and, by default, the queries
+/// larger samples found over the bound (`light_found.csv`).
 fn light_cases() -> Vec<LightCase> {
     let t = Table::load("LIGHT_SWEEP_DIR", "reference/golden/sweep", "light");
+    let found = Table::committed("reference/golden/sweep", "light_found");
+    let found_rows = if std::env::var_os("LIGHT_SWEEP_DIR").is_some() {
+        None
+    } else {
+        Some(found.rows())
+    };
     t.rows()
+        .chain(found_rows.into_iter().flatten())
         .map(|r| {
             let (params, query, scratches) = light_query(&r);
             LightCase {
@@ -178,6 +189,7 @@ fn light_cases() -> Vec<LightCase> {
                 },
                 exact: r.d("ref"),
                 kappa: r.d("kappa").max(r.d("kappa_s")),
+                reach: light_reach(&r),
                 row: format!("light: {}", r.text()),
             }
         })
@@ -248,7 +260,7 @@ fn every_backend_within_the_conditioning_bound() {
             stats
                 .entry((3, "area light, Eq. 27"))
                 .or_default()
-                .add_with(K_LIGHT, rel(got, c.exact), c.kappa, || {
+                .add_with(K_LIGHT, light_err(got, c.exact, c.reach), c.kappa, || {
                     format!("{} ({} {got:e})", c.row, b.name())
                 });
         }

@@ -41,10 +41,20 @@ impl Table {
     /// `DIR/family.csv`, `DIR` from the environment variable `env` or else `default_dir`
     /// (relative to the repository root; every crate is one level below it).
     pub fn load(env: &str, default_dir: &str, family: &str) -> Table {
-        let dir = std::env::var(env)
-            .unwrap_or_else(|_| format!("{}/../{default_dir}", env!("CARGO_MANIFEST_DIR")));
-        let path = format!("{dir}/{family}.csv");
-        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+        match std::env::var(env) {
+            Ok(dir) => Table::read(&format!("{dir}/{family}.csv")),
+            Err(_) => Table::committed(default_dir, family),
+        }
+    }
+
+    /// `default_dir/family.csv` in the repository, whatever the environment says.
+    pub fn committed(default_dir: &str, family: &str) -> Table {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        Table::read(&format!("{root}/{default_dir}/{family}.csv"))
+    }
+
+    fn read(path: &str) -> Table {
+        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
         let mut lines = text.lines();
         let head = lines.next().unwrap().split(',').map(String::from).collect();
         let rows = lines
@@ -76,6 +86,13 @@ impl Row<'_> {
     }
     pub fn d(&self, col: &str) -> f64 {
         self.s(col).parse().unwrap()
+    }
+    /// [`Row::d`], or `default` where the table has no such column.
+    pub fn d_or(&self, col: &str, default: f64) -> f64 {
+        match self.t.head.iter().position(|h| h == col) {
+            Some(i) => self.r[i].parse().unwrap(),
+            None => default,
+        }
     }
     pub fn u(&self, col: &str) -> u32 {
         self.s(col).parse().unwrap()
@@ -349,6 +366,26 @@ pub fn footprint_inputs(r: &Row) -> (Scratch, Ellipse, f32) {
 /// measured worst `err/max(κ, κs)` 9.4 on the committed subset (a band 1.6e-7 rad inside
 /// the edge of a 7.8e-5-rad sphere).
 pub const K_LIGHT: f64 = 16.0;
+
+/// A light-sweep row's `reach` (0 in samples written before the column existed).
+pub fn light_reach(r: &Row) -> f64 {
+    r.d_or("reach", 0.0)
+}
+
+/// The error of `got` on a light-sweep query of exact value `want`, measured against its
+/// bound `max(1e-4, K_LIGHT·max(κ, κs))`: [`rel`] (∞ for NaN), except where `want` is below
+/// [`TINY`]. There a relative error says nothing, and the row's `reach` (the largest exact
+/// value when one input moves by `K_LIGHT` f32 ulps either way, the bound's steps taken
+/// literally rather than linearly; 0 where no such move lights anything) is what the
+/// kernel may return: 0 up to it, ∞ beyond.
+pub fn light_err(got: f32, want: f64, reach: f64) -> f64 {
+    let err = if want.abs() < TINY && reach > TINY && f64::from(got).abs() <= reach {
+        0.0
+    } else {
+        rel(got, want)
+    };
+    if err.is_nan() { f64::INFINITY } else { err }
+}
 
 /// One query of the light sweep (`reference/light_sweep.py`) as the kernel's records: the
 /// single band (Velinov Eq. 27) with the exact Si, reflectance 1, and the row's scratches.
