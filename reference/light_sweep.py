@@ -71,8 +71,9 @@ import time
 import mpmath as mp
 import numpy as np
 
+from parallel import ordered_map
 from scratch_sweep import s32, unit_tangent
-from sweep_io import draw_wo, f32, nudges, ordered_map, parse_args, progress, write_csv
+from sweep_io import draw_wo, f32, nudges, parse_args, progress, write_csv
 
 mp.mp.dps = 40
 

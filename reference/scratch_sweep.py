@@ -60,13 +60,13 @@ import random
 import struct
 import sys
 import time
-from multiprocessing import Pool
 
 import mpmath as mp
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import refcore as rc  # noqa: E402
+from parallel import ordered_map  # noqa: E402
 
 OUT = os.path.join(HERE, "golden", "sweep")
 
@@ -553,11 +553,7 @@ def gen_queries(fam, n, seed_offset=0):
 def run_family(fam, n, outdir, jobs, seed_offset=0):
     qs = gen_queries(fam, n, seed_offset)
     t0 = time.time()
-    if jobs > 1:
-        with Pool(jobs) as pool:
-            res = pool.map(evaluate, [(fam, q) for q in qs], chunksize=4)
-    else:  # in this process
-        res = [evaluate((fam, q)) for q in qs]
+    res = list(ordered_map(evaluate, [(fam, q) for q in qs], jobs, chunksize=4))
     path = os.path.join(outdir, fam + ".csv")
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")

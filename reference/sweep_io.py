@@ -4,7 +4,6 @@ direction helpers in mpmath."""
 import argparse
 import math
 import sys
-from multiprocessing import Pool
 from pathlib import Path
 
 import mpmath as mp
@@ -29,7 +28,7 @@ def nudges(x, ulps=1):
 
 def parse_args(default_count, jobs=False):
     """`--count N --seed-offset K --out DIR` (DIR default `reference/golden/sweep/`), and
-    `--jobs N` where the sweep evaluates in parallel (`ordered_map`)."""
+    `--jobs N` where the sweep evaluates in parallel (`parallel.ordered_map`)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--count", type=int, default=default_count)
     ap.add_argument("--seed-offset", type=int, default=0)
@@ -37,16 +36,6 @@ def parse_args(default_count, jobs=False):
     if jobs:
         ap.add_argument("--jobs", type=int, default=1, help="worker processes (default 1: this one)")
     return ap.parse_args()
-
-
-def ordered_map(fn, items, jobs):
-    """`fn` over `items`, results in their order: in this process for `jobs` <= 1, else in a
-    pool of `jobs` workers (so a sweep's output does not depend on `jobs`)."""
-    if jobs <= 1:
-        yield from map(fn, items)
-        return
-    with Pool(jobs) as pool:
-        yield from pool.imap(fn, items, chunksize=8)
 
 
 def progress(done, count, every=100):
