@@ -231,6 +231,15 @@ fn bad_footprint_specs_name_the_field() {
         ),
         "queries[0].ellipse.a1",
     );
+    // A semi-axis below the spec's range: 1/a1² overflowed f32 and the accurate average was
+    // NaN (fuzz find, a1 = 2.8e-27 µm).
+    rejects(
+        "footprint",
+        &format!(
+            r#"{{"scratches": {s}, "queries": [{{"scratch": 0, "ellipse": {{"center": [0, 0], "angle_rad": 0, "a1": 282.842712474614E-29, "a2": 35.4}}}}]}}"#
+        ),
+        "queries[0].ellipse.a1: must be in [1e-6, 1e9]",
+    );
     // σ beyond the spec's range: Eq. 15's σ³ overflowed f32 at 1.1e24 (fuzz find).
     for sigma in ["1.1e24", "1e-30"] {
         rejects(

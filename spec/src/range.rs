@@ -57,13 +57,16 @@ pub const DEPTH_UM: Range = Range {
     text: "[0, 1e6] µm",
 };
 
-/// A footprint ellipse's semi-axis, µm: up to a kilometre, so that the ellipse's area
-/// `π a1 a2` and its squared axes stay within f32.
+/// A footprint ellipse's semi-axis, µm: a picometre to a kilometre, so that the ellipse's
+/// area `π a1 a2`, its squared axes and the inverse squares `1/a²` of the accurate
+/// average's quadratic form (and their product) stay within f32: `a1` = 2.8e-27 µm gave a
+/// NaN average (a `footprint_spec` fuzz find), and below ~1e-10 µm for both axes the
+/// product overflows.
 pub const ELLIPSE_AXIS_UM: Range = Range {
-    lo: 0.0,
+    lo: 1.0e-6,
     hi: 1.0e9,
-    lo_open: true,
-    text: "(0, 1e9] µm",
+    lo_open: false,
+    text: "[1e-6, 1e9] µm",
 };
 
 impl Range {
@@ -128,6 +131,11 @@ mod tests {
         );
         assert_eq!(e(WIDTH_UM, -1.0), "f: must be >= 0, got -1");
         assert_eq!(e(ELLIPSE_AXIS_UM, 0.0), "f: must be > 0, got 0");
+        // the fuzz find whose accurate footprint average was NaN
+        assert_eq!(
+            e(ELLIPSE_AXIS_UM, 2.828427e-27),
+            "f: must be in [1e-6, 1e9] µm, got 0.000000000000000000000000002828427"
+        );
         assert_eq!(e(LAMBDA_NM, 50.0), "f: must be in [100, 1e4] nm, got 50");
         assert_eq!(SIGMA_UM.check(1e6, "f").unwrap(), 1e6);
         assert_eq!(WIDTH_UM.check(0.0, "f").unwrap(), 0.0);
