@@ -35,7 +35,7 @@ use scratchwave_kernel::units::{UNIT_TOLERANCE, um_from_nm};
 use std::collections::BTreeMap;
 use sweep_common::{
     FLOOR, K, K_LIGHT, SCRATCH_FAMILIES, Stat, Table, footprint_inputs, ghs_params, light_err,
-    light_query, light_reach, rel, report, scratch_query,
+    light_query, light_reach, light_tables, rel, report, scratch_query,
 };
 
 /// One sweep query as a batch, with its exact value, κ and report group.
@@ -167,18 +167,11 @@ struct LightCase {
     row: String,
 }
 
-/// The light sweep's subset (or `LIGHT_SWEEP_DIR`'s sample) and, by default, the queries
-/// larger samples found over the bound (`light_found.csv`).
+/// The light sweep's queries (`sweep_common::light_tables`).
 fn light_cases() -> Vec<LightCase> {
-    let t = Table::load("LIGHT_SWEEP_DIR", "reference/golden/sweep", "light");
-    let found = Table::committed("reference/golden/sweep", "light_found");
-    let found_rows = if std::env::var_os("LIGHT_SWEEP_DIR").is_some() {
-        None
-    } else {
-        Some(found.rows())
-    };
-    t.rows()
-        .chain(found_rows.into_iter().flatten())
+    light_tables()
+        .iter()
+        .flat_map(Table::rows)
         .map(|r| {
             let (params, query, scratches) = light_query(&r);
             LightCase {

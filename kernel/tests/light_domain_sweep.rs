@@ -44,7 +44,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use sweep_common::{
     K, K_LIGHT, Row, Stat, Table, bound_with, check_size, light_err, light_group, light_query,
-    light_reach, rel, report,
+    light_reach, light_tables, rel, report,
 };
 
 /// The committed subset's size (the test refuses fewer).
@@ -82,11 +82,9 @@ fn kernel_value(r: &Row) -> f32 {
 
 #[test]
 fn light_integral_is_within_its_bound_over_the_domain() {
-    let table = Table::load("LIGHT_SWEEP_DIR", "reference/golden/sweep", "light");
-    check_size("LIGHT_SWEEP_DIR", &table, MIN_QUERIES);
+    let tables = light_tables();
+    check_size("LIGHT_SWEEP_DIR", &tables[0], MIN_QUERIES);
     let sample = std::env::var_os("LIGHT_SWEEP_DIR").is_some();
-    let found = Table::committed("reference/golden/sweep", "light_found");
-    let found_rows = if sample { None } else { Some(found.rows()) };
     let mut names: BTreeMap<(usize, usize), &'static str> = BTreeMap::new();
     // against the inputs' conditioning κ alone, and against max(κ, κ_s)
     let mut strict: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
@@ -94,7 +92,7 @@ fn light_integral_is_within_its_bound_over_the_domain() {
     let mut dump = String::from("kind,alpha,elev,distance,err,bound,err_inputs,bound_inputs\n");
     // exact zeros a 16-ulp move would light: (count, worst kernel value ÷ reach)
     let (mut reached, mut worst_reach) = (0, 0.0f64);
-    for r in table.rows().chain(found_rows.into_iter().flatten()) {
+    for r in tables.iter().flat_map(Table::rows) {
         let ((ki, si), name) = light_group(&r, &mut names);
         let got = kernel_value(&r);
         let (want, kappa, kappa_s) = (r.d("ref"), r.d("kappa"), r.d("kappa_s"));

@@ -367,6 +367,20 @@ pub fn footprint_inputs(r: &Row) -> (Scratch, Ellipse, f32) {
 /// the edge of a 7.8e-5-rad sphere).
 pub const K_LIGHT: f64 = 16.0;
 
+/// The light sweep's tables: the committed subset (or `LIGHT_SWEEP_DIR`'s sample) first and,
+/// by default, the queries larger samples found over the bound (`light_found.csv`).
+pub fn light_tables() -> Vec<Table> {
+    let mut tables = vec![Table::load(
+        "LIGHT_SWEEP_DIR",
+        "reference/golden/sweep",
+        "light",
+    )];
+    if std::env::var_os("LIGHT_SWEEP_DIR").is_none() {
+        tables.push(Table::committed("reference/golden/sweep", "light_found"));
+    }
+    tables
+}
+
 /// A light-sweep row's `reach` (0 in samples written before the column existed).
 pub fn light_reach(r: &Row) -> f64 {
     r.d_or("reach", 0.0)
