@@ -99,6 +99,7 @@ pub struct Queries<'a> {
     pub x_um: Option<&'a [f32]>,
     /// `3n` pixel footprints `(a1, a2, angle)`: semi-axes (µm) and the angle of `a1` against
     /// the tangent (radians); `None`: no footprint. Only the Velinov model averages over it.
+    /// Semi-axes in `[1e-6, 1e9]` µm, the angle finite (checked, as by the spec reader).
     pub footprint: Option<&'a [f32]>,
     /// Wavelengths (nm): `lambda_count` values shared by every query, or `lambda_count` per
     /// query; `None`: 700, 520, 440 nm (Werner §5's RGB).
@@ -155,6 +156,7 @@ impl Queries<'_> {
         }
         if let Some(f) = self.footprint {
             len("footprint", f.len(), 3)?;
+            check_footprints(f)?;
         }
         if let Some(l) = self.lambda_nm {
             let k = self.lambda_count;
@@ -224,6 +226,27 @@ impl Queries<'_> {
         w.count = k as u32;
         w
     }
+}
+
+/// Checks each footprint `(a1, a2, angle)` as the footprint spec reader does: semi-axes in
+/// [`range::ELLIPSE_AXIS_UM`](scratchwave_spec::range::ELLIPSE_AXIS_UM), a finite angle.
+/// Names the first bad value by its index in the flat array, its query and its column.
+fn check_footprints(f: &[f32]) -> Result<(), Error> {
+    let axis = scratchwave_spec::range::ELLIPSE_AXIS_UM;
+    for (k, &v) in f.iter().enumerate() {
+        let (query, column) = (k / 3, ["a1", "a2", "angle"][k % 3]);
+        let why = if k % 3 == 2 {
+            (!v.is_finite()).then(|| "must be finite".to_string())
+        } else {
+            (!axis.contains(f64::from(v))).then(|| format!("must be in {}", axis.text))
+        };
+        if let Some(why) = why {
+            return Err(Error::arg(format!(
+                "footprint[{k}] (query {query}, {column}): {why}, got {v}"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// Runs `f(first_query, chunk_of_out_rows)` over `out` in parallel chunks of [`CHUNK`]

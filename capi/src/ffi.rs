@@ -33,6 +33,8 @@ pub struct SwQueries {
     /// `2n` floats: scratch-space position (µm), or null for the origin.
     pub x_um: *const f32,
     /// `3n` floats: pixel footprint `(a1, a2, angle)` (µm, µm, radians), or null for none.
+    /// Semi-axes in [1e-6, 1e9] µm and a finite angle; otherwise `SW_STATUS_INVALID_ARGUMENT`
+    /// naming the first bad value.
     pub footprint: *const f32,
     /// Wavelengths (nm): `lambda_count` floats, or `lambda_count` per query when
     /// `lambda_per_query` is non-zero; null for 700, 520, 440 nm.

@@ -64,6 +64,40 @@ fn bad_arguments_name_themselves() {
     let s = unsafe { sw_eval(b, &q5, out.as_mut_ptr(), 4) };
     assert_eq!(s, Status::InvalidArgument);
     assert_eq!(last(), "lambda_count: expected 1 to 4, got 5");
+    // A footprint semi-axis outside [1e-6, 1e9] µm (2.8e-27 gave a NaN Velinov average) or
+    // a non-finite angle is named by its flat index, query and column.
+    for (fp, want) in [
+        (
+            [2.828427e-27f32, 1.0, 0.0],
+            "footprint[0] (query 0, a1): must be in [1e-6, 1e9] µm, got 0.000000000000000000000000002828427",
+        ),
+        (
+            [1.0, 2e9, 0.0],
+            "footprint[1] (query 0, a2): must be in [1e-6, 1e9] µm, got 2000000000",
+        ),
+        (
+            [1.0, 1.0, f32::NAN],
+            "footprint[2] (query 0, angle): must be finite, got NaN",
+        ),
+    ] {
+        let bad = SwQueries {
+            footprint: fp.as_ptr(),
+            ..q
+        };
+        // SAFETY: valid arrays of the promised sizes.
+        let s = unsafe { sw_eval(b, &bad, out.as_mut_ptr(), 3) };
+        assert_eq!((s, last().as_str()), (Status::InvalidArgument, want));
+    }
+    let fp = [1e-6f32, 1e9, 0.5];
+    let edge = SwQueries {
+        footprint: fp.as_ptr(),
+        ..q
+    };
+    // SAFETY: as above.
+    assert_eq!(
+        unsafe { sw_eval(b, &edge, out.as_mut_ptr(), 3) },
+        Status::Ok
+    );
     let no_wi = SwQueries {
         wi: ptr::null(),
         ..q

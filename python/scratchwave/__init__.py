@@ -157,7 +157,8 @@ class Material:
 
         ``wo``, ``wi``: (n, 3) local directions; ``x_um``: (n, 2) scratch-space positions
         (default the origin); ``footprint``: (n, 3) pixel footprints ``(a1, a2, angle)``
-        (µm, µm, radians; the Velinov model averages over it); ``lambda_nm``: (k,) shared
+        (µm, µm, radians; the Velinov model averages over it; semi-axes in [1e-6, 1e9] µm,
+        else ``ValueError``); ``lambda_nm``: (k,) shared
         or (n, k) per query, k ≤ 4 (default 700, 520, 440 nm).
         """
         wo_f, n, x, fp, lam, k = self._common(wo, x_um, footprint, lambda_nm)

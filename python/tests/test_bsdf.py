@@ -109,6 +109,13 @@ def test_errors_name_the_field():
         sw.Material(C_MATERIAL).eval(np.zeros((2, 3)), np.zeros((3, 3)))
     with pytest.raises(ValueError, match=r"lambda_count: expected 1 to 4, got 5"):
         sw.Material(C_MATERIAL).eval([0, 0, 1], [0, 0, 1], lambda_nm=[500] * 5)
+    vel = sw.Material({"model": "velinov", "sigma_um": 10,
+                       "scratches": [{"p0": [-50, 0], "p1": [50, 0], "width": 2, "depth": 0.2}]})
+    with pytest.raises(ValueError, match=r"footprint\[4\] \(query 1, a2\): must be in \[1e-6, 1e9\] µm"):
+        vel.eval([[0, 0, 1]] * 2, [[0, 0, 1]] * 2, footprint=[[1, 1, 0], [1, 1e-9, 0]])
+    with pytest.raises(ValueError, match=r"footprint\[2\] \(query 0, angle\): must be finite"):
+        vel.eval([0, 0, 1], [0, 0, 1], footprint=[1, 1, np.inf])
+    assert np.all(np.isfinite(vel.eval([0, 0, 1], [0, 0, 1], footprint=[1e-6, 1e9, 0])))
     with pytest.raises(sw.InputError, match=r"segments\[1\]\.width: must be >= 0"):
         sw.ScratchSet.from_rows([[0, 0, 1, 0, 1, 0.1], [0, 0, 1, 0, -1, 0.1]])
     with pytest.raises(ValueError, match="scratches: given both"):
