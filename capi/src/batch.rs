@@ -173,7 +173,7 @@ impl Queries<'_> {
                 )));
             }
             let lambda = scratchwave_spec::range::LAMBDA_NM;
-            if let Some(bad) = l.iter().position(|x| !lambda.contains(f64::from(*x))) {
+            if let Some(bad) = l.iter().position(|x| !lambda.contains_f32(*x)) {
                 return Err(Error::arg(format!(
                     "lambda_nm[{bad}]: must be in {}, got {}",
                     lambda.text, l[bad]
@@ -238,7 +238,7 @@ fn check_footprints(f: &[f32]) -> Result<(), Error> {
         let why = if k % 3 == 2 {
             (!v.is_finite()).then(|| "must be finite".to_string())
         } else {
-            (!axis.contains(f64::from(v))).then(|| format!("must be in {}", axis.text))
+            (!axis.contains_f32(v)).then(|| format!("must be in {}", axis.text))
         };
         if let Some(why) = why {
             return Err(Error::arg(format!(

@@ -79,6 +79,15 @@ impl Range {
         }) && x <= self.hi
     }
 
+    /// Whether the f32 `x` is the f32 rounding of a value in the range, i.e. what
+    /// [`Range::check`] may return: the bounds are rounded to f32, so `1e-6f32` (a little
+    /// below 1e-6) is in `[1e-6, 1e9]`. NaN is not. For the f32 arrays of the C and Python
+    /// interfaces.
+    pub fn contains_f32(&self, x: f32) -> bool {
+        let (lo, hi) = (self.lo as f32, self.hi as f32);
+        (if self.lo_open { x > lo } else { x >= lo }) && x <= hi
+    }
+
     /// `x` (finite, as [`crate::json::number`] returns it) as f32 if it lies in the range,
     /// else an error at `path`: `must be > 0` / `must be >= 0` for a value of the wrong
     /// sign (the ranges are all non-negative), the interval otherwise.
@@ -115,6 +124,25 @@ mod tests {
             assert_eq!(hi.parse::<f64>().unwrap(), r.hi, "{}", r.text);
             assert!(interval.ends_with(']'));
         }
+    }
+
+    /// f32 inputs meet the bounds as rounded to f32: exactly at them in, one ulp out not.
+    #[test]
+    fn f32_values_meet_rounded_bounds() {
+        for r in [SIGMA_UM, LAMBDA_NM, WIDTH_UM, DEPTH_UM, ELLIPSE_AXIS_UM] {
+            let (lo, hi) = (r.lo as f32, r.hi as f32);
+            assert_eq!(r.contains_f32(lo), !r.lo_open, "{}", r.text);
+            assert!(
+                r.contains_f32(hi) && !r.contains_f32(hi.next_up()),
+                "{}",
+                r.text
+            );
+            assert!(!r.contains_f32(lo.next_down()) && !r.contains_f32(f32::NAN));
+        }
+        // 1e-6f32 is 9.99999997e-7, below the f64 bound
+        assert!(!ELLIPSE_AXIS_UM.contains(f64::from(1e-6f32)));
+        assert!(ELLIPSE_AXIS_UM.contains_f32(1e-6));
+        assert!(!ELLIPSE_AXIS_UM.contains_f32(2.828427e-27));
     }
 
     #[test]
