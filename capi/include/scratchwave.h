@@ -68,6 +68,8 @@ typedef struct SwQueries {
   const float *x_um;
   /**
    * `3n` floats: pixel footprint `(a1, a2, angle)` (µm, µm, radians), or null for none.
+   * Semi-axes in [1e-6, 1e9] µm and a finite angle; otherwise `SW_STATUS_INVALID_ARGUMENT`
+   * naming the first bad value.
    */
   const float *footprint;
   /**
