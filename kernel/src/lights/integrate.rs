@@ -378,8 +378,15 @@ const EXTENT_PANEL_SDS: f32 = 3.0;
 /// `1/√(2π)`.
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_28;
 
-/// Most panels the V-groove quadrature uses per interval.
-const MAX_PANELS: u32 = 64;
+/// Most panels the V-groove quadrature uses per interval: a quarter of the integrand's lobe
+/// spacing `1/W` each up to 512 lobes (`W·|len|`), which covers every chord (`|len| ≤ 2/λ`)
+/// of grooves up to 2048·λ/8 wide: 92 µm at λ = 360 nm, beyond the certified 50 µm. The cap
+/// was 64, which left chords over 16 lobes with wider panels: up to 22 % off at 300 lobes
+/// (`kernel/tests/vgroove_band_sweep.rs`, `docs/stability.md` *The V-groove across the band*).
+pub const MAX_PANELS: u32 = 2048;
+/// Panels summed into one partial sum before it joins the total, so that the rounding of the
+/// sum grows like `PANEL_BLOCK + panels/PANEL_BLOCK` rather than like the panel count.
+pub const PANEL_BLOCK: u32 = 64;
 
 /// `∫_{q0}^{q0 + len} |M − P|²(ξ₂) dξ₂` (µm² · 1/µm), the length passed apart from the start
 /// (see [`band_integral_len`]).
@@ -401,14 +408,23 @@ pub fn across_integral(a: &Across, q0: f32, len: f32) -> f32 {
             };
             let panels = if panels == 0 { 1 } else { panels };
             let h = len / panels as f32;
-            let mut acc = 0.0;
+            let mut total = 0.0;
             let mut p = 0;
             while p < panels {
-                let mid = q0 + (p as f32 + 0.5) * h;
-                acc = triangle_panel(a, mid, 0.5 * h, acc);
-                p += 1;
+                let end = if panels - p < PANEL_BLOCK {
+                    panels
+                } else {
+                    p + PANEL_BLOCK
+                };
+                let mut acc = 0.0;
+                while p < end {
+                    let mid = q0 + (p as f32 + 0.5) * h;
+                    acc = triangle_panel(a, mid, 0.5 * h, acc);
+                    p += 1;
+                }
+                total += acc;
             }
-            0.5 * h * acc
+            0.5 * h * total
         }
     }
 }
