@@ -76,6 +76,7 @@ import mpmath as mp
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from scratch_sweep import f32, loguni, nudge, s32, sgn, unit_tangent  # noqa: E402
+from sweep_io import gauss_legendre_mp  # noqa: E402
 
 OUT = os.path.join(HERE, "golden", "sweep")
 
@@ -357,24 +358,10 @@ _GL = {}
 
 
 def gauss_legendre(n):
-    """Nodes and weights on [-1, 1] (float64; Newton on the Legendre recurrence at 40 digits)."""
+    """Nodes and weights on [-1, 1] (float64; `sweep_io.gauss_legendre_mp` rounded)."""
     if n not in _GL:
-        xs, ws = [], []
-        with mp.workdps(40):
-            for k in range(1, n + 1):
-                x = mp.cos(mp.pi * (k - mp.mpf(1) / 4) / (n + mp.mpf(1) / 2))
-                for _ in range(100):
-                    p0, p1 = mp.mpf(1), x
-                    for j in range(2, n + 1):
-                        p0, p1 = p1, ((2 * j - 1) * x * p1 - (j - 1) * p0) / j
-                    dp = n * (x * p1 - p0) / (x * x - 1)
-                    dx = p1 / dp
-                    x -= dx
-                    if abs(dx) < mp.mpf(10) ** -35:
-                        break
-                xs.append(float(x))
-                ws.append(float(2 / ((1 - x * x) * dp * dp)))
-        _GL[n] = (xs, ws)
+        xs, ws = gauss_legendre_mp(n)
+        _GL[n] = ([float(x) for x in xs], [float(w) for w in ws])
     return _GL[n]
 
 

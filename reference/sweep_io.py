@@ -75,3 +75,24 @@ def angle(p, q):
     2 asin(|p - q| / 2)."""
     chord = mp.sqrt(sum((x - y) ** 2 for x, y in zip(unit(p), unit(q))))
     return 2 * mp.asin(min(mp.mpf(1), chord / 2))
+
+
+def gauss_legendre_mp(n):
+    """Nodes and weights of the n-point Gauss-Legendre rule on [-1, 1] as mpmath numbers,
+    Newton on the Legendre recurrence at 40 digits."""
+    xs, ws = [], []
+    with mp.workdps(40):
+        for k in range(1, n + 1):
+            x = mp.cos(mp.pi * (k - mp.mpf(1) / 4) / (n + mp.mpf(1) / 2))
+            for _ in range(100):
+                p0, p1 = mp.mpf(1), x
+                for j in range(2, n + 1):
+                    p0, p1 = p1, ((2 * j - 1) * x * p1 - (j - 1) * p0) / j
+                dp = n * (x * p1 - p0) / (x * x - 1)
+                dx = p1 / dp
+                x -= dx
+                if abs(dx) < mp.mpf(10) ** -35:
+                    break
+            xs.append(x)
+            ws.append(2 / ((1 - x * x) * dp * dp))
+    return xs, ws
