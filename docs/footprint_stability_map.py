@@ -21,8 +21,6 @@ The "before" grid is docs/footprint-stability-before.csv, the dump of the same t
 kernel before the footprint fixes, gridded by --save-before. Python standard library only;
 the colours and drawing conventions are docs/ghs_stability_map.py's.
 """
-import argparse
-import csv
 import math
 import os
 import sys
@@ -30,9 +28,12 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from ghs_stability_map import bound_label, cell, colour, colour_bar, read_dump, run_sweep_test  # noqa: E402
+from ghs_stability_map import (before_after_rows, bound_label, cell, colour_bar, heat_cells, load_grid,  # noqa: E402
+                               log_axes, run_sweep_test, svg_close, svg_open)
 
 BEFORE = os.path.join(HERE, "footprint-stability-before.csv")
+# the columns of a "before" grid's key before its cell
+GRID_KEY = ()
 SVG = os.path.join(HERE, "footprint-stability.svg")
 
 # log10 axes: (lo, hi, cells)
@@ -76,20 +77,12 @@ def run_test():
     return run_sweep_test("footprint_domain_sweep", "FOOTPRINT_SWEEP_DUMP")
 
 
-def save_grid(g, path):
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh, lineterminator="\n")
-        w.writerow(["ix", "iy", "max_err_over_bound", "count"])
-        for (ix, iy), (m, n) in sorted(g.items()):
-            w.writerow([ix, iy, "%.4g" % m, n])
-
-
-def load_grid(path):
-    g = {}
-    with open(path) as fh:
-        for r in csv.DictReader(fh):
-            g[(int(r["ix"]), int(r["iy"]))] = (float(r["max_err_over_bound"]), int(r["count"]))
-    return g
+def scaled_cells(g, ref):
+    """`heat_cells`' cells of a grid of single values, coloured as value/ref."""
+    def cell_of(ix, iy):
+        v = g.get((ix, iy))
+        return None if v is None else (v / ref, "%.3g" % v)
+    return cell_of
 
 
 def draw(before, after, model, path):
@@ -98,8 +91,7 @@ def draw(before, after, model, path):
     pw, ph = SX[2] * cw, AY[2] * ch
     width = left + 2 * pw + gapx + 170
     height = top + 2 * (ph + gapy) + 30
-    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
-           '<rect width="100%" height="100%" fill="white"/>',
+    out = svg_open(width, height) + [
            '<text x="%d" y="18" font-size="13">Pixel footprint (Velinov §4) vs mpmath at the same f32 inputs</text>' % left,
            '<text x="%d" y="34" fill="#555">python3 docs/footprint_stability_map.py (queries: reference/golden/sweep/footprint.csv)</text>' % left]
     panels = [
@@ -113,23 +105,8 @@ def draw(before, after, model, path):
         y0 = top + row * (ph + gapy) + 14
         worst = max(g.values(), default=0)
         out.append('<text x="%d" y="%d" font-size="12">%s (max %.3g)</text>' % (x0, y0 - 4, label, worst))
-        for ix in range(SX[2]):
-            for iy in range(AY[2]):
-                v = g.get((ix, iy))
-                fill = colour(v / ref) if v is not None else "#e6e6e6"
-                title = "<title>%.3g</title>" % v if v is not None else ""
-                out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="%s" stroke="white" stroke-width="0.5">%s</rect>'
-                           % (x0 + ix * cw, y0 + (AY[2] - 1 - iy) * ch, cw, ch, fill, title))
-        xw, yh = SX[2] * cw, AY[2] * ch
-        for e in range(math.ceil(SX[0]), math.floor(SX[1]) + 1):
-            x = x0 + (e - SX[0]) / (SX[1] - SX[0]) * xw
-            out.append('<text x="%.1f" y="%d" text-anchor="middle">1e%d</text>' % (x, y0 + yh + 13, e))
-        out.append('<text x="%.1f" y="%d" text-anchor="middle">footprint size √(a1 a2)/σ</text>' % (x0 + xw / 2, y0 + yh + 27))
-        for e in range(math.ceil(AY[0]), math.floor(AY[1]) + 1):
-            y = y0 + yh - (e - AY[0]) / (AY[1] - AY[0]) * yh
-            out.append('<text x="%d" y="%.1f" text-anchor="end" dominant-baseline="middle">1e%d</text>' % (x0 - 4, y, e))
-        out.append('<text x="%d" y="%.1f" text-anchor="middle" transform="rotate(-90 %d %.1f)">aspect</text>'
-                   % (x0 - 40, y0 + yh / 2, x0 - 40, y0 + yh / 2))
+        out += heat_cells(scaled_cells(g, ref), SX[2], AY[2], x0, y0, cw, ch)
+        out += log_axes(x0, y0, SX[2] * cw, AY[2] * ch, SX, AY, "footprint size √(a1 a2)/σ", "aspect", 40)
     # legends: err/bound (top row) and model error (bottom row), the same colours
     bx = left + 2 * pw + gapx + 30
     for row, title, fmt in ((0, "err/bound", bound_label),
@@ -137,25 +114,16 @@ def draw(before, after, model, path):
         by, bh = top + row * (ph + gapy) + 14, ph + 30
         out += colour_bar(bx, by, bh, fmt)
         out.append('<text x="%d" y="%d">%s</text>' % (bx - 4, by - 6, title))
-    out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; aspect = a_major/a_minor; model error |Eq. 16/η_P − 1| of the exact values</text>' % (left, height - 12))
-    out.append("</svg>")
-    with open(path, "w") as fh:
-        fh.write("\n".join(out) + "\n")
+    svg_close(out, path, left, height, "grey: no query in the cell; aspect = a_major/a_minor; model error |Eq. 16/η_P − 1| of the exact values")
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--dump", help="a FOOTPRINT_SWEEP_DUMP file of the current kernel (skips cargo)")
-    ap.add_argument("--save-before", metavar="DUMP", help="grid this dump into " + BEFORE + " and exit")
-    a = ap.parse_args()
-    if a.save_before:
-        save_grid(grid(read_dump(a.save_before)), BEFORE)
-        print("wrote", BEFORE)
+    rows = before_after_rows(__doc__, "FOOTPRINT_SWEEP_DUMP", BEFORE, run_test, grid, GRID_KEY)
+    if rows is None:
         return
-    rows = read_dump(a.dump) if a.dump else run_test()
     after = grid(rows)
     model = model_grid(rows)
-    draw(load_grid(BEFORE), after, model, SVG)
+    draw(load_grid(BEFORE, GRID_KEY), after, model, SVG)
     print("accurate eta_P: worst err/bound %.3g" % max((v[0] for v in after.values()), default=0))
     for lo in range(int(SX[0]), int(SX[1])):
         sel = [v for (ix, _), v in model.items() if lo <= SX[0] + ix * (SX[1] - SX[0]) / SX[2] < lo + 1]

@@ -79,19 +79,23 @@ def run_test():
     return run_sweep_test("ghs_domain_sweep", "GHS_SWEEP_DUMP")
 
 
-def save_grid(g, path):
+def save_grid(g, path, names=("family",)):
+    """Writes a grid `{(*names, ix, iy): (worst err/bound, count)}` as CSV (a "before" grid;
+    `names` the columns of the key before the cell)."""
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")
-        w.writerow(["family", "ix", "iy", "max_err_over_bound", "count"])
-        for (fam, ix, iy), (m, n) in sorted(g.items()):
-            w.writerow([fam, ix, iy, "%.4g" % m, n])
+        w.writerow(list(names) + ["ix", "iy", "max_err_over_bound", "count"])
+        for key, (m, n) in sorted(g.items()):
+            w.writerow(list(key) + ["%.4g" % m, n])
 
 
-def load_grid(path):
+def load_grid(path, names=("family",)):
+    """The grid `save_grid` wrote."""
     g = {}
     with open(path) as fh:
         for r in csv.DictReader(fh):
-            g[(r["family"], int(r["ix"]), int(r["iy"]))] = (float(r["max_err_over_bound"]), int(r["count"]))
+            key = tuple(r[c] for c in names) + (int(r["ix"]), int(r["iy"]))
+            g[key] = (float(r["max_err_over_bound"]), int(r["count"]))
     return g
 
 
@@ -130,14 +134,89 @@ def colour_bar(bx, by, bh, label=bound_label):
     return out
 
 
+
+def svg_open(width, height):
+    """The first lines of every map: the svg element and a white ground."""
+    return ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
+            '<rect width="100%" height="100%" fill="white"/>']
+
+
+def svg_close(out, path, left, height, note):
+    """Appends the grey footnote `note` and the closing tag to `out` and writes it to `path`."""
+    out.append('<text x="%d" y="%d" fill="#555">%s</text>' % (left, height - 12, note))
+    out.append("</svg>")
+    with open(path, "w") as fh:
+        fh.write("\n".join(out) + "\n")
+
+
+def bound_bar(bx, by, bh):
+    """The colour bar of err/bound with its title."""
+    return colour_bar(bx, by, bh) + ['<text x="%d" y="%d">err/bound</text>' % (bx - 4, by - 14)]
+
+
+def worst_of(v):
+    """`heat_cells`' cell of a grid value `(worst err/bound, count)`, None for no value."""
+    return (v[0], "%.3g over %d queries" % v) if v else None
+
+
+def heat_cells(cell_of, nx, ny, x0, y0, cw, ch):
+    """The rects of one map's nx × ny cells, (0, 0) at the bottom left: `cell_of(ix, iy)` gives
+    (the value to colour, its tooltip), or None for a grey cell (no query)."""
+    out = []
+    for ix in range(nx):
+        for iy in range(ny):
+            c = cell_of(ix, iy)
+            fill = colour(c[0]) if c else "#e6e6e6"
+            title = "<title>%s</title>" % c[1] if c else ""
+            out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="%s" stroke="white" stroke-width="0.5">%s</rect>'
+                       % (x0 + ix * cw, y0 + (ny - 1 - iy) * ch, cw, ch, fill, title))
+    return out
+
+
+def decades(axis):
+    """The decades to label on a log axis `(lo, hi, cells)`: every second one where it spans
+    more than 7."""
+    return range(math.ceil(axis[0]), math.floor(axis[1]) + 1, 2 if axis[1] - axis[0] > 7 else 1)
+
+
+def log_axes(x0, y0, w, h, xa, ya, xlabel, ylabel, ylabel_dx, ytick=lambda e: "1e%d" % e):
+    """Tick labels and titles of a map's two log axes (the map `w` × `h` at (x0, y0); the
+    y title `ylabel_dx` left of it; `ytick(e)` labels the y decade e)."""
+    out = []
+    for e in decades(xa):
+        x = x0 + (e - xa[0]) / (xa[1] - xa[0]) * w
+        out.append('<text x="%.1f" y="%d" text-anchor="middle">1e%d</text>' % (x, y0 + h + 13, e))
+    out.append('<text x="%.1f" y="%d" text-anchor="middle">%s</text>' % (x0 + w / 2, y0 + h + 27, xlabel))
+    for e in decades(ya):
+        y = y0 + h - (e - ya[0]) / (ya[1] - ya[0]) * h
+        out.append('<text x="%d" y="%.1f" text-anchor="end" dominant-baseline="middle">%s</text>' % (x0 - 4, y, ytick(e)))
+    out.append('<text x="%d" y="%.1f" text-anchor="middle" transform="rotate(-90 %d %.1f)">%s</text>'
+               % (x0 - ylabel_dx, y0 + h / 2, x0 - ylabel_dx, y0 + h / 2, ylabel))
+    return out
+
+
+def before_after_rows(doc, dump_env, before, run, grid, names=("family",)):
+    """The command line of a map beside a "before" grid: `--dump FILE` (a `dump_env` file of
+    the current kernel, instead of running cargo) or `--save-before DUMP` (grid that dump
+    into `before` and stop). Returns the current kernel's rows, or None after --save-before."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--dump", help="a %s file of the current kernel (skips cargo)" % dump_env)
+    ap.add_argument("--save-before", metavar="DUMP", help="grid this dump into " + before + " and exit")
+    a = ap.parse_args()
+    if a.save_before:
+        save_grid(grid(read_dump(a.save_before)), before, names)
+        print("wrote", before)
+        return None
+    return read_dump(a.dump) if a.dump else run()
+
+
 def draw(before, after, path):
     cw, ch = 26, 14
     pw, ph = BX[2] * cw, TY[2] * ch
     left, top, gapx, gapy = 70, 50, 80, 70
     width = left + 2 * pw + gapx + 150
     height = top + 2 * ph + gapy + 70
-    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
-           '<rect width="100%" height="100%" fill="white"/>',
+    out = svg_open(width, height) + [
            '<text x="%d" y="18" font-size="13">GHS kernel vs mpmath at the same f32 inputs: worst err / max(1e-4, 8κ) per cell</text>' % left,
            '<text x="%d" y="34" fill="#555">python3 docs/ghs_stability_map.py (queries: reference/ghs/golden/sweep/{ndf,brdf}.csv)</text>' % left]
     for row, (fam, label) in enumerate(FAMILIES):
@@ -146,44 +225,16 @@ def draw(before, after, path):
             y0 = top + row * (ph + gapy) + 14
             worst = max((v[0] for k, v in g.items() if k[0] == fam), default=0)
             out.append('<text x="%d" y="%d" font-size="12">%s, %s: worst %.3g</text>' % (x0, y0 - 4, label, name, worst))
-            for ix in range(BX[2]):
-                for iy in range(TY[2]):
-                    v = g.get((fam, ix, iy))
-                    fill = colour(v[0]) if v else "#e6e6e6"
-                    title = "<title>%.3g over %d queries</title>" % v if v else ""
-                    out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="%s" stroke="white" stroke-width="0.5">%s</rect>'
-                               % (x0 + ix * cw, y0 + (TY[2] - 1 - iy) * ch, cw, ch, fill, title))
-            # axes
-            for e in range(-3, 1):
-                x = x0 + (e - BX[0]) / (BX[1] - BX[0]) * pw
-                if x <= x0 + pw:
-                    out.append('<text x="%.1f" y="%d" text-anchor="middle">1e%d</text>' % (x, y0 + ph + 13, e))
-            out.append('<text x="%.1f" y="%d" text-anchor="middle">β</text>' % (x0 + pw / 2, y0 + ph + 27))
-            for e in range(-6, 3, 2):
-                y = y0 + ph - (e - TY[0]) / (TY[1] - TY[0]) * ph
-                out.append('<text x="%d" y="%.1f" text-anchor="end" dominant-baseline="middle">1e%d</text>' % (x0 - 4, y, e))
-            out.append('<text x="%d" y="%.1f" text-anchor="middle" transform="rotate(-90 %d %.1f)">tan θh</text>'
-                       % (x0 - 40, y0 + ph / 2, x0 - 40, y0 + ph / 2))
-    # colour bar
-    bx, by, bh = left + 2 * pw + gapx + 30, top + 14, 2 * ph + gapy - 20
-    out += colour_bar(bx, by, bh)
-    out.append('<text x="%d" y="%d">err/bound</text>' % (bx - 4, by - 14))
-    out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; tan θh = 0 is drawn in the lowest row</text>' % (left, height - 12))
-    out.append("</svg>")
-    with open(path, "w") as fh:
-        fh.write("\n".join(out) + "\n")
+            out += heat_cells(lambda ix, iy: worst_of(g.get((fam, ix, iy))), BX[2], TY[2], x0, y0, cw, ch)
+            out += log_axes(x0, y0, pw, ph, BX, TY, "β", "tan θh", 40)
+    out += bound_bar(left + 2 * pw + gapx + 30, top + 14, 2 * ph + gapy - 20)
+    svg_close(out, path, left, height, "grey: no query in the cell; tan θh = 0 is drawn in the lowest row")
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--dump", help="a GHS_SWEEP_DUMP file of the current kernel (skips cargo)")
-    ap.add_argument("--save-before", metavar="DUMP", help="grid this dump into " + BEFORE + " and exit")
-    a = ap.parse_args()
-    if a.save_before:
-        save_grid(grid(read_dump(a.save_before)), BEFORE)
-        print("wrote", BEFORE)
+    rows = before_after_rows(__doc__, "GHS_SWEEP_DUMP", BEFORE, run_test, grid)
+    if rows is None:
         return
-    rows = read_dump(a.dump) if a.dump else run_test()
     after = grid(rows)
     draw(load_grid(BEFORE), after, SVG)
     for fam, label in FAMILIES:

@@ -32,7 +32,8 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from ghs_stability_map import cell, colour, colour_bar, read_dump, run_sweep_test  # noqa: E402
+from ghs_stability_map import (bound_bar, cell, heat_cells, log_axes, read_dump, run_sweep_test,  # noqa: E402
+                               svg_close, svg_open, worst_of)
 
 SVG = os.path.join(HERE, "light-stability.svg")
 
@@ -79,8 +80,7 @@ def draw(g, n_rows, source, path):
     panels = [(kind, klabel, m) for kind, klabel in KINDS for m in MAPS]
     width = left + 2 * pw + gapx + 150
     height = top + sum(m[2][2] * ch + gapy for _, _, m in panels) + 30
-    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
-           '<rect width="100%" height="100%" fill="white"/>',
+    out = svg_open(width, height) + [
            '<text x="%d" y="18" font-size="13">Area lights (Velinov Eq. 27, exact Si) vs mpmath at the same f32 inputs: worst err / bound per cell</text>' % left,
            '<text x="%d" y="34" fill="#555">python3 docs/light_stability_map.py %s</text>' % (left, source),
            '<text x="%d" y="50" fill="#555">%d queries; bound = max(1e-4, K·κ): left the light family&apos;s 16·max(κ, κs) (asserted), right the inputs&apos; 8κ</text>' % (left, n_rows)]
@@ -93,32 +93,13 @@ def draw(g, n_rows, source, path):
             vals = [v[0] for k, v in g.items() if k[:3] == (kind, key, b)]
             status = "worst %.3g" % max(vals) if vals else "no query"
             out.append('<text x="%d" y="%d" font-size="12">%s, %s: %s</text>' % (x0, y0 - 4, klabel, blabel, status))
-            for ix in range(AX[2]):
-                for iy in range(ya[2]):
-                    v = g.get((kind, key, b, ix, iy))
-                    fill = colour(v[0]) if v else "#e6e6e6"
-                    title = "<title>%.3g over %d queries</title>" % v if v else ""
-                    out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="%s" stroke="white" stroke-width="0.5">%s</rect>'
-                               % (x0 + ix * cw, y0 + (ya[2] - 1 - iy) * ch, cw, ch, fill, title))
-            for e in range(math.ceil(AX[0]), math.floor(AX[1]) + 1):
-                x = x0 + (e - AX[0]) / (AX[1] - AX[0]) * pw
-                out.append('<text x="%.1f" y="%d" text-anchor="middle">1e%d</text>' % (x, y0 + ph + 13, e))
-            out.append('<text x="%.1f" y="%d" text-anchor="middle">angular radius α (rad)</text>' % (x0 + pw / 2, y0 + ph + 27))
-            step = 2 if ya[1] - ya[0] > 7 else 1
-            for e in range(math.ceil(ya[0]), math.floor(ya[1]) + 1, step):
-                y = y0 + ph - (e - ya[0]) / (ya[1] - ya[0]) * ph
-                lab = "≤1e%d" % e if key == "height" and e == ya[0] else "1e%d" % e
-                out.append('<text x="%d" y="%.1f" text-anchor="end" dominant-baseline="middle">%s</text>' % (x0 - 4, y, lab))
-            out.append('<text x="%d" y="%.1f" text-anchor="middle" transform="rotate(-90 %d %.1f)">%s</text>'
-                       % (x0 - 48, y0 + ph / 2, x0 - 48, y0 + ph / 2, yl))
+            out += heat_cells(lambda ix, iy: worst_of(g.get((kind, key, b, ix, iy))), AX[2], ya[2], x0, y0, cw, ch)
+            height_tick = key == "height"
+            out += log_axes(x0, y0, pw, ph, AX, ya, "angular radius α (rad)", yl, 48,
+                            lambda e: "≤1e%d" % e if height_tick and e == ya[0] else "1e%d" % e)
         y0 += ph + gapy - 14
-    bx, by = left + 2 * pw + gapx + 30, top + 14
-    out += colour_bar(bx, by, 2 * AX[2] * ch)
-    out.append('<text x="%d" y="%d">err/bound</text>' % (bx - 4, by - 14))
-    out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; bottom row of the height maps: the light reaches the horizon or below</text>' % (left, height - 12))
-    out.append("</svg>")
-    with open(path, "w") as fh:
-        fh.write("\n".join(out) + "\n")
+    out += bound_bar(left + 2 * pw + gapx + 30, top + 14, 2 * AX[2] * ch)
+    svg_close(out, path, left, height, "grey: no query in the cell; bottom row of the height maps: the light reaches the horizon or below")
 
 
 def main():

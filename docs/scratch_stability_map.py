@@ -20,8 +20,6 @@ The "before" grid is docs/scratch-stability-before.csv, the dump of the same tes
 kernel before the fixes (commit cf41449), gridded by --save-before. Python standard library
 only; the colours and drawing conventions are docs/ghs_stability_map.py's.
 """
-import argparse
-import csv
 import math
 import os
 import sys
@@ -29,9 +27,12 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from ghs_stability_map import cell, colour, colour_bar, read_dump, run_sweep_test  # noqa: E402
+from ghs_stability_map import (before_after_rows, bound_bar, cell, heat_cells, load_grid, log_axes,  # noqa: E402
+                               run_sweep_test, svg_close, svg_open, worst_of)
 
 BEFORE = os.path.join(HERE, "scratch-stability-before.csv")
+# the columns of a "before" grid's key before its cell
+GRID_KEY = ("group", "map")
 SVG = os.path.join(HERE, "scratch-stability.svg")
 
 # maps: (key, label, x column, x axis (log10 lo, hi, cells), x label, y column, y axis, y label)
@@ -66,22 +67,6 @@ def run_test():
     return run_sweep_test("scratch_domain_sweep", "SCRATCH_SWEEP_DUMP")
 
 
-def save_grid(g, path):
-    with open(path, "w", newline="") as fh:
-        w = csv.writer(fh, lineterminator="\n")
-        w.writerow(["group", "map", "ix", "iy", "max_err_over_bound", "count"])
-        for (grp, key, ix, iy), (m, n) in sorted(g.items()):
-            w.writerow([grp, key, ix, iy, "%.4g" % m, n])
-
-
-def load_grid(path):
-    g = {}
-    with open(path) as fh:
-        for r in csv.DictReader(fh):
-            g[(r["group"], r["map"], int(r["ix"]), int(r["iy"]))] = (float(r["max_err_over_bound"]), int(r["count"]))
-    return g
-
-
 def draw(before, after, path):
     cw, ch = 22, 16
     left, top, gapx, gapy = 70, 50, 80, 74
@@ -90,8 +75,7 @@ def draw(before, after, path):
     panels = [(grp, glabel, m) for grp, glabel in GROUPS for m in MAPS]
     width = left + 2 * pw + gapx + 150
     height = top + len(panels) * (ph + gapy) + 30
-    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">' % (width, height),
-           '<rect width="100%" height="100%" fill="white"/>',
+    out = svg_open(width, height) + [
            '<text x="%d" y="18" font-size="13">Scratch models vs mpmath at the same f32 inputs: worst err / max(1e-4, 8κ) per cell</text>' % left,
            '<text x="%d" y="34" fill="#555">python3 docs/scratch_stability_map.py (queries: reference/golden/sweep/*.csv)</text>' % left]
     for row, (grp, glabel, (key, mlabel, _, xa, xl, _, ya, yl)) in enumerate(panels):
@@ -101,44 +85,18 @@ def draw(before, after, path):
             cells = [v[0] for k, v in g.items() if k[0] == grp and k[1] == key]
             status = "worst %.3g" % max(cells) if cells else "not swept then"
             out.append('<text x="%d" y="%d" font-size="12">%s, %s: %s</text>' % (x0, y0 - 4, glabel, name, status))
-            for ix in range(xa[2]):
-                for iy in range(ya[2]):
-                    v = g.get((grp, key, ix, iy))
-                    fill = colour(v[0]) if v else "#e6e6e6"
-                    title = "<title>%.3g over %d queries</title>" % v if v else ""
-                    out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="%s" stroke="white" stroke-width="0.5">%s</rect>'
-                               % (x0 + ix * cw, y0 + (ya[2] - 1 - iy) * ch, cw, ch, fill, title))
-            xw, yh = xa[2] * cw, ya[2] * ch
-            for e in range(math.ceil(xa[0]), math.floor(xa[1]) + 1):
-                x = x0 + (e - xa[0]) / (xa[1] - xa[0]) * xw
-                out.append('<text x="%.1f" y="%d" text-anchor="middle">1e%d</text>' % (x, y0 + yh + 13, e))
-            out.append('<text x="%.1f" y="%d" text-anchor="middle">%s</text>' % (x0 + xw / 2, y0 + yh + 27, xl))
-            for e in range(math.ceil(ya[0]), math.floor(ya[1]) + 1):
-                y = y0 + yh - (e - ya[0]) / (ya[1] - ya[0]) * yh
-                out.append('<text x="%d" y="%.1f" text-anchor="end" dominant-baseline="middle">1e%d</text>' % (x0 - 4, y, e))
-            out.append('<text x="%d" y="%.1f" text-anchor="middle" transform="rotate(-90 %d %.1f)">%s</text>'
-                       % (x0 - 44, y0 + yh / 2, x0 - 44, y0 + yh / 2, yl))
-    bx, by, bh = left + 2 * pw + gapx + 30, top + 14, 2 * ph + gapy - 20
-    out += colour_bar(bx, by, bh)
-    out.append('<text x="%d" y="%d">err/bound</text>' % (bx - 4, by - 14))
-    out.append('<text x="%d" y="%d" fill="#555">grey: no query in the cell; depth and width are the first scratch&apos;s</text>' % (left, height - 12))
-    out.append("</svg>")
-    with open(path, "w") as fh:
-        fh.write("\n".join(out) + "\n")
+            out += heat_cells(lambda ix, iy: worst_of(g.get((grp, key, ix, iy))), xa[2], ya[2], x0, y0, cw, ch)
+            out += log_axes(x0, y0, xa[2] * cw, ya[2] * ch, xa, ya, xl, yl, 44)
+    out += bound_bar(left + 2 * pw + gapx + 30, top + 14, 2 * ph + gapy - 20)
+    svg_close(out, path, left, height, "grey: no query in the cell; depth and width are the first scratch&apos;s")
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--dump", help="a SCRATCH_SWEEP_DUMP file of the current kernel (skips cargo)")
-    ap.add_argument("--save-before", metavar="DUMP", help="grid this dump into " + BEFORE + " and exit")
-    a = ap.parse_args()
-    if a.save_before:
-        save_grid(grid(read_dump(a.save_before)), BEFORE)
-        print("wrote", BEFORE)
+    rows = before_after_rows(__doc__, "SCRATCH_SWEEP_DUMP", BEFORE, run_test, grid, GRID_KEY)
+    if rows is None:
         return
-    rows = read_dump(a.dump) if a.dump else run_test()
     after = grid(rows)
-    draw(load_grid(BEFORE), after, SVG)
+    draw(load_grid(BEFORE, GRID_KEY), after, SVG)
     for grp, label in GROUPS:
         for key, mlabel, *_ in MAPS:
             w = max((v[0] for k, v in after.items() if k[0] == grp and k[1] == key), default=0)
