@@ -94,9 +94,8 @@ def draw(g, n_rows, source, path):
             status = "worst %.3g" % max(vals) if vals else "no query"
             out.append('<text x="%d" y="%d" font-size="12">%s, %s: %s</text>' % (x0, y0 - 4, klabel, blabel, status))
             out += heat_cells(lambda ix, iy: worst_of(g.get((kind, key, b, ix, iy))), AX[2], ya[2], x0, y0, cw, ch)
-            height_tick = key == "height"
             out += log_axes(x0, y0, pw, ph, AX, ya, "angular radius α (rad)", yl, 48,
-                            lambda e: "≤1e%d" % e if height_tick and e == ya[0] else "1e%d" % e)
+                            lambda e: "≤1e%d" % e if key == "height" and e == ya[0] else "1e%d" % e)
         y0 += ph + gapy - 14
     out += bound_bar(left + 2 * pw + gapx + 30, top + 14, 2 * AX[2] * ch)
     svg_close(out, path, left, height, "grey: no query in the cell; bottom row of the height maps: the light reaches the horizon or below")
