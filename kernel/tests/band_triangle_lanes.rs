@@ -23,15 +23,15 @@ fn scalar_rule(a: &Across, q0: f32, len: f32) -> f32 {
     .max(1);
     let h = len / panels as f32;
     let mut total = 0.0f32;
-    for block in (0..panels).collect::<Vec<_>>().chunks(PANEL_BLOCK as usize) {
-        total += block_sum(a, q0, h, block);
+    for start in (0..panels).step_by(PANEL_BLOCK as usize) {
+        total += block_sum(a, q0, h, start..panels.min(start + PANEL_BLOCK));
     }
     0.5 * h * total
 }
 
-fn block_sum(a: &Across, q0: f32, h: f32, panels: &[u32]) -> f32 {
+fn block_sum(a: &Across, q0: f32, h: f32, panels: std::ops::Range<u32>) -> f32 {
     let mut acc = 0.0f32;
-    for &p in panels {
+    for p in panels {
         let mid = q0 + (p as f32 + 0.5) * h;
         for i in 0..4 {
             let j = i / 2;
