@@ -12,9 +12,10 @@ signed length len of a lit chord in xi_2 (1/um). With beta = pi W q and kappa = 
 (radians), Werner's V profile (Eqs. 26, 29-31, as corrected in `kernel/src/scratch/profile.rs`)
 gives
 
-  M - P = W int_0^1 (1 - e^{i kappa (1 - u)}) cos(beta u) du
-        = W [sinc(beta) - e^{i kappa}/2 (E(beta - kappa) + E(-beta - kappa))],
-  E(a) = int_0^1 e^{i a u} du = (e^{i a} - 1)/(i a).
+  M - P = W int_0^1 (1 - e^{i kappa (1 - u)}) cos(beta u) du,
+
+evaluated as the mask `W sinc(beta)` less the profile's pole-free closed form
+`refcore.closedform_triangle_sinc` (the reference behind the scratch goldens).
 
 The integrand is entire in q and varies on the scale 1/W (its lobes are 1/W wide, its
 peaks at W q = 0 and W q = +-D ht); here it is integrated at 30 digits by 16-point
@@ -47,6 +48,7 @@ import time
 import mpmath as mp
 
 from parallel import ordered_map
+from refcore import closedform_triangle_sinc
 from scratch_sweep import s32
 from sweep_io import f32, gauss_legendre_mp, nudges, parse_args, progress, write_csv
 
@@ -60,23 +62,13 @@ PIECES_PER_LOBE = 4
 GL = gauss_legendre_mp(GL_N)
 
 
-def e_int(a):
-    """E(a) = int_0^1 e^{i a u} du, its series where a is small."""
-    if abs(a) < mp.mpf(10) ** -8:
-        return 1 + 1j * a / 2 - a * a / 6
-    return (mp.expj(a) - 1) / (1j * a)
-
-
-def sinc(x):
-    if abs(x) < mp.mpf(10) ** -8:
-        return 1 - x * x / 6
-    return mp.sin(x) / x
-
-
 def mask_minus_profile(w, kappa, q):
-    """M - P of the V groove at xi_2 = q (closed form above)."""
+    """M - P of the V groove at xi_2 = q: the mask `W sinc(pi W q)` less the profile's
+    pole-free closed form `refcore.closedform_triangle_sinc` (with 2 gamma D / lambda =
+    kappa / pi, i.e. gamma = kappa / (2 pi D) at lambda = 1)."""
     beta = mp.pi * w * q
-    return w * (sinc(beta) - mp.expj(kappa) / 2 * (e_int(beta - kappa) + e_int(-beta - kappa)))
+    mask = w * (mp.sin(beta) / beta if beta != 0 else 1)
+    return mask - closedform_triangle_sinc(w, 1, kappa / (2 * mp.pi), 1, q)
 
 
 def power(w, kappa, q):
