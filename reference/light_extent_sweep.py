@@ -35,7 +35,7 @@ kernel's error here is dominated by the extent rule's own quadrature and its cut
 
 Usage: python3 reference/light_extent_sweep.py [--count N] [--seed-offset K] [--out DIR]
 Writes DIR/light_extent.csv (default reference/golden/sweep/): `light_sweep.py`'s columns
-without kappa and kappa_s, plus `single`, the same query's exact single-band value, and
+without kappa, kappa_s and reach, plus `single`, the same query's exact single-band value, and
 `tail`, the share of the exact value that comes from bands beyond 4.5 standard deviations
 (the kernel's window, `EXTENT_SDS`).
 """
@@ -184,11 +184,11 @@ def main():
         if reg is not None:
             wo = ls.unit(q["wo"])
             lit = sum(len(ls.Band(s, wo).lit(reg[0])) for s in q["scratches"])
-        r = ls.row(q, ref, 0.0, lit, 0.0)[:-2]
+        r = ls.row(q, ref, 0.0, lit, 0.0, 0.0)[:-3]
         rows.append(r + [mp.nstr(single, 17, min_fixed=1, max_fixed=0), "%.4g" % tail])
         progress(len(rows), args.count, 20)
     print(f"{len(rows)} queries, {time.time() - t0:.0f} s", file=sys.stderr)
-    write_csv(args.out, "light_extent", ls.header()[:-2] + ["single", "tail"], rows)
+    write_csv(args.out, "light_extent", ls.header()[:-3] + ["single", "tail"], rows)
 
 
 if __name__ == "__main__":

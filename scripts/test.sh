@@ -2,8 +2,9 @@
 # The whole test suite: setup, formatting, lints, docs, every crate's tests (including the
 # SPIR-V build and the lavapipe conformance cases), the conformance run (tables on every
 # backend, scenes rendered on cpu, embree and spirv), a fuzz smoke
-# (scripts/fuzz.sh 20: every cargo-fuzz target for 20 s), and the Python package's pytest
-# suite (scripts/python.sh). Formatting and lints cover the fuzz and Python crates too (each
+# (scripts/fuzz.sh 20: every cargo-fuzz target for 20 s), the Python package's pytest
+# suite (scripts/python.sh), and a smoke of the reference generators
+# (scripts/reference-smoke.sh). Formatting and lints cover the fuzz and Python crates too (each
 # its own workspace).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,5 +39,7 @@ step "scratchwave run (conformance)"
 cargo run --release --quiet -p scratchwave-conformance --bin scratchwave -- run
 step "scripts/python.sh (Python package: build, install, pytest)"
 scripts/python.sh
+step "scripts/reference-smoke.sh (the sweep generators regenerate their committed subsets)"
+scripts/reference-smoke.sh
 step "scripts/fuzz.sh 20 (fuzz smoke: 20 s per target)"
 scripts/fuzz.sh 20
