@@ -14,9 +14,9 @@
 //! single band (`bands = 1`) against the same exact value is printed too: the error of
 //! Eq. 27's model, not of its arithmetic (that is `light_domain_sweep.rs`).
 //!
-//! The extent rule does not meet #20's `1e-4` over this domain yet: 257 of the 387 lit
+//! The extent rule does not meet #20's `1e-4` over this domain yet: 275 of the 387 lit
 //! queries do, and the test prints where the rest come from (near the horizon; bands
-//! beyond the kernel's 4.5-σ window; neither: mostly lights below 1e-3 rad), see
+//! beyond the kernel's 4.5-σ window; neither: lights below 1e-3 rad), see
 //! `docs/stability.md` *The Gaussian across the band*. Asserted, as a ratchet: every lit
 //! query within the committed subset's measured worst
 //! ([`RATCHET`], [`RATCHET_WINDOW`], [`RATCHET_HORIZON`]), at least [`RATCHET_WITHIN`]
@@ -41,16 +41,18 @@ const MIN_QUERIES: usize = 400;
 
 /// Not bounds: the extent rule does not meet #20's `1e-4` here yet (`docs/stability.md`
 /// *The Gaussian across the band*). These are the committed subset's measured worst
-/// relative errors by [`Cause`] (other: 2.4e-2, since the cuts at the band's specular
-/// point, 0.31 before them; near the horizon: 1.0, the kernel's 0 for values below 1e-11
-/// that lie beyond the window, since the band circle keeps `cos φ`, 7.0e3 before), and its
-/// count of lit queries within 1e-4 (266 since arc ends beyond `|s| = 1/2` take `s` from
-/// `cos φ` and a plane's two crossings the difference of their roots; 257 before that, 207
-/// before the cuts), so that a change can only improve them; a fix lowers them.
-const RATCHET: f64 = 0.03;
+/// relative errors by [`Cause`] (other: 1.6e-2, since the cuts where a band is tangent to a
+/// polygon edge; 2.4e-2 since the cuts at the band's specular point, 0.31 before them; near
+/// the horizon: 1.0, the kernel's 0 for values below 1e-11 that lie beyond the window,
+/// since the band circle keeps `cos φ`, 7.0e3 before), and its count of lit queries within
+/// 1e-4 (275 since the tangent cuts and panels of half a lobe step; 266 since arc ends
+/// beyond `|s| = 1/2` take `s` from `cos φ` and a plane's two crossings the difference of
+/// their roots; 257 before that, 207 before the specular cuts), so that a change can only
+/// improve them; a fix lowers them.
+const RATCHET: f64 = 0.02;
 const RATCHET_WINDOW: f64 = 0.35;
 const RATCHET_HORIZON: f64 = 1.0;
-const RATCHET_WITHIN: usize = 264;
+const RATCHET_WITHIN: usize = 273;
 
 /// The band rules compared: `LightParams::bands` and a name.
 const RULES: [(u32, &str); 4] = [

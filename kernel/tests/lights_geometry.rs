@@ -369,3 +369,105 @@ fn f64s(v: glam::Vec3) -> [f64; 3] {
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
+
+/// `LightRegion::kinks` of a polygon holds, besides its corners, every band `u · w = c`
+/// that touches an edge above the horizon from anywhere in the range: the interior extrema
+/// of `u · w` along each edge's great-circle arc, found here in f64 by sampling the arc
+/// densely and refining by golden section. At a grazing view the band is a small circle
+/// that can touch an edge from inside the light; the extent rule must cut its range there
+/// (`docs/stability.md` *Bands tangent to an edge*).
+#[test]
+fn polygon_kinks_include_bands_tangent_to_an_edge() {
+    use scratchwave_kernel::lights::LightRegion;
+    use scratchwave_kernel::lights::band_circle::Breakpoints;
+    let mut next = uniform(0x7a9e_51d3);
+    let (mut tangencies, mut worst) = (0usize, 0.0f64);
+    for _ in 0..400 {
+        // A convex n-gon around a direction above the horizon, 0.05–1 rad across.
+        let n = 3 + (next() * 6.0) as usize;
+        let (el, az) = (0.1 + 1.3 * next(), std::f64::consts::TAU * next());
+        let c = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
+        let e1 = normalise(cross(c, [0.0, 0.0, 1.0]));
+        let e2 = cross(c, e1);
+        let r = (0.05 + 0.95 * next()).tan() * 0.5;
+        let phase = std::f64::consts::TAU * next();
+        let verts: Vec<[f32; 3]> = (0..n)
+            .map(|k| {
+                let a = phase + std::f64::consts::TAU * (k as f64 + 0.4 * next()) / n as f64;
+                let (ca, sa) = (a.cos() * r, a.sin() * r);
+                [0, 1, 2].map(|i| (3.0 * (c[i] + ca * e1[i] + sa * e2[i])) as f32)
+            })
+            .collect();
+        let Some(region) = LightRegion::new(&Light::polygon(&verts)) else {
+            continue;
+        };
+        let u_az = std::f64::consts::TAU * next();
+        let u = glam::Vec3::new(u_az.cos() as f32, u_az.sin() as f32, 0.0);
+        let mut kinks = Breakpoints::empty();
+        region.kinks(u, &mut kinks);
+        let kinks = &kinks.s[..kinks.len];
+        let u64s = f64s(u);
+        let unit: Vec<[f64; 3]> = verts.iter().map(|v| normalise(v.map(f64::from))).collect();
+        for m in 0..n {
+            let (a, b) = (unit[m], unit[(m + 1) % n]);
+            let on_arc = |t: f64| normalise([0, 1, 2].map(|i| a[i] + t * (b[i] - a[i])));
+            let f = |t: f64| dot(u64s, on_arc(t));
+            let steps = 4000;
+            for i in 1..steps {
+                let (t0, t1, t2) = (
+                    (i - 1) as f64 / steps as f64,
+                    i as f64 / steps as f64,
+                    (i + 1) as f64 / steps as f64,
+                );
+                let sign = if f(t1) > f(t0) && f(t1) >= f(t2) {
+                    1.0
+                } else if f(t1) < f(t0) && f(t1) <= f(t2) {
+                    -1.0
+                } else {
+                    continue;
+                };
+                // Golden section on [t0, t2] for the extremum of sign · f.
+                let (mut lo, mut hi) = (t0, t2);
+                for _ in 0..80 {
+                    let g = 0.381_966_011_250_105;
+                    let (p, q) = (lo + g * (hi - lo), hi - g * (hi - lo));
+                    if sign * f(p) > sign * f(q) {
+                        hi = q;
+                    } else {
+                        lo = p;
+                    }
+                }
+                let t = 0.5 * (lo + hi);
+                if on_arc(t)[2] < 1e-6 {
+                    continue;
+                }
+                let value = f(t);
+                let miss = kinks
+                    .iter()
+                    .map(|&k| (f64::from(k) - value).abs())
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    miss < 1e-5,
+                    "edge {m} of {verts:?}: tangent band at u·w = {value} (t = {t}) not among the kinks {kinks:?}"
+                );
+                tangencies += 1;
+                worst = worst.max(miss);
+            }
+        }
+    }
+    println!("{tangencies} tangent bands found among the kinks, worst offset {worst:.2e}");
+    assert!(tangencies > 50, "too few tangencies drawn: {tangencies}");
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn normalise(v: [f64; 3]) -> [f64; 3] {
+    let l = dot(v, v).sqrt();
+    v.map(|x| x / l)
+}

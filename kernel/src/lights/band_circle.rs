@@ -26,7 +26,7 @@
 //! so tangencies, vertices on the band ("a crossing on two arcs", Eq. 41) and spurious
 //! crossings with the unused part of a great circle need no special cases.
 
-use super::limits::MAX_BREAKPOINTS;
+use super::limits::{MAX_BREAKPOINTS, MAX_CUTS};
 use crate::math;
 use glam::{Vec2, Vec3};
 
@@ -164,7 +164,7 @@ impl BandCircle {
 #[derive(Clone, Copy, Debug)]
 pub struct Breakpoints {
     /// Values; only the first `len` are meaningful.
-    pub s: [f32; MAX_BREAKPOINTS],
+    pub s: [f32; MAX_CUTS],
     /// Number of values.
     pub len: usize,
 }
@@ -174,7 +174,7 @@ impl Breakpoints {
     #[inline]
     pub fn empty() -> Breakpoints {
         Breakpoints {
-            s: [0.0; MAX_BREAKPOINTS],
+            s: [0.0; MAX_CUTS],
             len: 0,
         }
     }
@@ -182,7 +182,7 @@ impl Breakpoints {
     /// Appends `s` (ignored when full or not finite).
     #[inline]
     pub fn push(&mut self, s: f32) {
-        if self.len < MAX_BREAKPOINTS && s.is_finite() {
+        if self.len < MAX_CUTS && s.is_finite() {
             self.s[self.len] = s;
             self.len += 1;
         }
@@ -357,13 +357,13 @@ impl ArcPoints {
 /// Sorts `v[..len]` so that no element comes `before` an earlier one (insertion sort, stable:
 /// a few dozen values).
 #[inline]
-fn insertion_sort<T: Copy, F: Fn(T, T) -> bool>(
-    v: &mut [T; MAX_BREAKPOINTS],
+fn insertion_sort<T: Copy, F: Fn(T, T) -> bool, const N: usize>(
+    v: &mut [T; N],
     len: usize,
     before: F,
 ) {
     let mut i = 1;
-    while i < len && i < MAX_BREAKPOINTS {
+    while i < len && i < N {
         let x = v[i];
         let mut j = i;
         while j > 0 && before(x, v[j - 1]) {

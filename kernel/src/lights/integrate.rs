@@ -21,7 +21,7 @@
 
 use super::band::{SiMode, band_integral_len};
 use super::band_circle::{ArcPoint, ArcPoints, BandCircle, Breakpoints};
-use super::limits::MAX_BREAKPOINTS;
+use super::limits::MAX_CUTS;
 use super::limits::MAX_VERTICES;
 use super::polygon::SphericalPolygon;
 use super::sphere::{Cone, SphereCap};
@@ -375,6 +375,14 @@ const EXTENT_SDS: f32 = 4.5;
 /// integrates the bare Gaussian over any such panel to 9e-5 of its total mass, and each
 /// panel is rescaled by the exact Gaussian mass (erf), which removes even that.
 const EXTENT_PANEL_SDS: f32 = 3.0;
+/// Widest panel of the extent rule in units of `δ = λ/(W·sd)`, the offset over which the
+/// band moves by one lobe spacing `1/W` of `|M − P|²`: the lit chord's ends cross the lobes
+/// as the band moves, so its integral ripples on that scale (and faster where a chord end
+/// runs along the light's boundary). Only grooves wider than `4.4σ/3 ≈ 1.5σ` have
+/// `δ/2` below [`EXTENT_PANEL_SDS`].
+const EXTENT_PANEL_LOBES: f32 = 0.5;
+/// Most panels between two cuts of the extent rule (8 chords each).
+const EXTENT_MAX_PIECES: f32 = 32.0;
 /// `1/√(2π)`.
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_28;
 
@@ -522,8 +530,9 @@ fn fixed_rule_power(
 
 /// The extent rule's `∫ chord_power(x·sd) φ(x) dx` (φ the standard normal density) over the
 /// light's own range of `x`: the range is cut where the chord has kinks (polygon corners, the
-/// horizon meeting the light's boundary), where it steps (the band's specular point entering
-/// the light, [`specular_cuts`]) and into panels at most [`EXTENT_PANEL_SDS`] wide,
+/// horizon meeting the light's boundary, a band tangent to an edge), where it steps (the
+/// band's specular point entering the light, [`specular_cuts`]) and into panels at most
+/// [`EXTENT_PANEL_SDS`] and [`EXTENT_PANEL_LOBES`] lobe steps wide,
 /// and each panel gets the 8-point Gauss–Legendre rule in `1 − cos t`, whose nodes crowd
 /// at both ends where the chord opens like a square root or kinks.
 fn extent_power(
@@ -547,7 +556,7 @@ fn extent_power(
     cuts.push(x_lo);
     cuts.push(x_hi);
     let mut i = 0;
-    while i < kinks.len && i < MAX_BREAKPOINTS {
+    while i < kinks.len && i < MAX_CUTS {
         let x = (kinks.s[i] + wo_t) / sd;
         if x > x_lo && x < x_hi {
             cuts.push(x);
@@ -556,16 +565,23 @@ fn extent_power(
     }
     specular_cuts(region, frame, wo, wo_t, across, sd, (x_lo, x_hi), &mut cuts);
     cuts.sort();
-    // The light covers the whole window with no kink in it: the chord is smooth across the
-    // band, and 5-point Gauss–Hermite is exact to degree 9 at a fifth of the cost.
-    if cuts.len == 2 && x_lo <= -EXTENT_SDS && x_hi >= EXTENT_SDS {
+    let lobe = EXTENT_PANEL_LOBES * across.lambda / (across.width * sd);
+    let widest = if lobe > 0.0 && lobe < EXTENT_PANEL_SDS {
+        lobe
+    } else {
+        EXTENT_PANEL_SDS
+    };
+    // The light covers the whole window with no kink in it and the chord does not ripple
+    // across lobes within a panel: it is smooth across the band, and 5-point Gauss–Hermite
+    // is exact to degree 9 at a fifth of the cost.
+    if cuts.len == 2 && x_lo <= -EXTENT_SDS && x_hi >= EXTENT_SDS && widest == EXTENT_PANEL_SDS {
         return fixed_rule_power(BandRule::Hermite5, region, frame, wo, across, sd);
     }
     let mut sum = 0.0;
     let mut c = 0;
-    while c + 1 < cuts.len && c + 1 < MAX_BREAKPOINTS {
+    while c + 1 < cuts.len && c + 1 < MAX_CUTS {
         let (a, b) = (cuts.s[c], cuts.s[c + 1]);
-        let pieces = math::clamp(math::ceil((b - a) / EXTENT_PANEL_SDS), 1.0, 4.0) as u32;
+        let pieces = math::clamp(math::ceil((b - a) / widest), 1.0, EXTENT_MAX_PIECES) as u32;
         let h = (b - a) / pieces as f32;
         let mut p = 0;
         while p < pieces {

@@ -7,3 +7,8 @@ pub const MAX_VERTICES: usize = 16;
 /// Capacity of a band's breakpoint list: two crossings for each edge of the largest
 /// polygon plus the two ends of the half circle.
 pub const MAX_BREAKPOINTS: usize = 2 * MAX_VERTICES + 2;
+
+/// Capacity of the extent rule's lists of band offsets (`Breakpoints`): per polygon edge a
+/// vertex, a horizon crossing and a tangency of the band, the range's two ends, and the
+/// specular cuts (5 at each of two crossings).
+pub const MAX_CUTS: usize = 3 * MAX_VERTICES + 12;

@@ -163,7 +163,10 @@ impl SphericalPolygon {
         range
     }
 
-    /// Adds `u · w` at the vertices above the horizon and where edges cross the horizon.
+    /// Adds `u · w` at the vertices above the horizon, where edges cross the horizon, and
+    /// where a band `u · w = c` is tangent to an edge above the horizon ([`arc_stationary`]):
+    /// a band curves more than a great circle, so it can touch an edge from inside the light
+    /// anywhere in its range, and its lit chord opens like a square root there.
     pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
@@ -174,6 +177,11 @@ impl SphericalPolygon {
             }
             if next < MAX_VERTICES {
                 let b = self.vertex[next];
+                arc_stationary(a, b, u, |value, w| {
+                    if w.z >= 0.0 {
+                        out.push(value);
+                    }
+                });
                 if (a.z > 0.0 && b.z < 0.0) || (a.z < 0.0 && b.z > 0.0) {
                     // On the great circle through a and b, between them, at z = 0.
                     let p = a * math::abs(b.z) + b * math::abs(a.z);
@@ -200,20 +208,29 @@ fn widen(a: (f32, f32), b: (f32, f32)) -> (f32, f32) {
     (math::min(a.0, b.0), math::max(a.1, b.1))
 }
 
-/// `[min, max]` of `u · w` along the shorter great-circle arc from `a` to `b` (unit):
-/// `w(s) = a cos s + e sin s`, so `u · w = A cos s + B sin s` peaks at `s = atan2(B, A)`
-/// and bottoms out half a turn away; each counts if it lies on the arc.
+/// `[min, max]` of `u · w` along the shorter great-circle arc from `a` to `b` (unit): the
+/// ends and the stationary points on the arc ([`arc_stationary`]).
 pub fn arc_dot_range(a: Vec3, b: Vec3, u: Vec3) -> (f32, f32) {
     let (ua, ub) = (u.dot(a), u.dot(b));
     let mut range = (math::min(ua, ub), math::max(ua, ub));
+    arc_stationary(a, b, u, |value, _| range = widen(range, (value, value)));
+    range
+}
+
+/// Visits `(u · w, w)` at the stationary points of `u · w` that lie on the shorter
+/// great-circle arc from `a` to `b` (unit): `w(s) = a cos s + e sin s`, so
+/// `u · w = A cos s + B sin s` peaks at `s = atan2(B, A)`, where `w = (A a + B e)/√(A² + B²)`
+/// and the value is `√(A² + B²)`, and bottoms out half a turn away, at `−w`. There a band
+/// `u · w = c` is tangent to the arc.
+pub fn arc_stationary<V: FnMut(f32, Vec3)>(a: Vec3, b: Vec3, u: Vec3, mut visit: V) {
     let n = a.cross(b);
     let sin_t = n.length();
     if !(sin_t > 1.0e-7) {
-        return range;
+        return;
     }
     let theta = math::atan2(sin_t, a.dot(b));
     let e = n.cross(a) * (1.0 / sin_t);
-    let (p, q) = (ua, u.dot(e));
+    let (p, q) = (u.dot(a), u.dot(e));
     let amp = math::sqrt(p * p + q * q);
     let s_max = math::atan2(q, p);
     let s_min = if s_max > 0.0 {
@@ -221,11 +238,15 @@ pub fn arc_dot_range(a: Vec3, b: Vec3, u: Vec3) -> (f32, f32) {
     } else {
         s_max + math::PI
     };
+    let peak = if amp > 0.0 {
+        (a * p + e * q) * (1.0 / amp)
+    } else {
+        a
+    };
     if s_max >= 0.0 && s_max <= theta {
-        range.1 = math::max(range.1, amp);
+        visit(amp, peak);
     }
     if s_min >= 0.0 && s_min <= theta {
-        range.0 = math::min(range.0, -amp);
+        visit(-amp, -peak);
     }
-    range
 }
