@@ -7,24 +7,11 @@
 # cargo build in $PYTHON_TARGET_DIR (default ~/.cache/scratchwave/python-target).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-VENV="${SCRATCHWAVE_VENV:-$HOME/.cache/scratchwave/venv}"
 export CARGO_TARGET_DIR_MAIN="${CARGO_TARGET_DIR:-$PWD/target}"
 log() { printf '[python] %s\n' "$*" >&2; }
-
-if [ ! -x "$VENV/bin/python" ]; then
-  log "creating $VENV"
-  mkdir -p "$(dirname "$VENV")"
-  python3 -m venv "$VENV"
-fi
+. scripts/venv.sh
+venv_with python/requirements-test.txt .scratchwave-requirements
 export PATH="$VENV/bin:$PATH"
-req=python/requirements-test.txt
-stamp="$VENV/.scratchwave-requirements"
-if ! cmp -s "$req" "$stamp" 2>/dev/null; then
-  log "pip install -r $req"
-  python -m pip install -q --upgrade pip
-  python -m pip install -q -r "$req"
-  cp "$req" "$stamp"
-fi
 log "building and installing the package (maturin)"
 CARGO_TARGET_DIR="${PYTHON_TARGET_DIR:-$HOME/.cache/scratchwave/python-target}" \
   python -m pip install -q --no-build-isolation --force-reinstall --no-deps ./python
