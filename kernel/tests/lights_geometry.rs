@@ -459,6 +459,79 @@ fn polygon_kinks_include_bands_tangent_to_an_edge() {
     assert!(tangencies > 50, "too few tangencies drawn: {tangencies}");
 }
 
+/// Where a sphere's cone holds `−u` or `u` (a large light near the horizon, seen along a
+/// scratch), the bands `u · w = c` around that pole lie wholly inside the cone until one
+/// touches its boundary from inside: a kink of the lit chord inside the light's range, not
+/// at its ends. Both extremes of `u · w` along the cone's boundary circle above the horizon,
+/// found here in f64 from the circle's own parametrisation, must be among the kinks or the
+/// range's ends (`docs/stability.md` *Bands tangent to a sphere's cone*).
+#[test]
+fn sphere_kinks_include_bands_tangent_inside_the_cone() {
+    use scratchwave_kernel::lights::LightRegion;
+    use scratchwave_kernel::lights::band_circle::Breakpoints;
+    let mut next = uniform(0x51e3_c0a7);
+    let (mut checked, mut inside, mut worst) = (0usize, 0usize, 0.0f64);
+    for _ in 0..2000 {
+        // A cone around a direction from 0.4 rad below to 0.6 above the horizon, 0.1–1.5
+        // rad wide, seen along a horizontal `u`.
+        let (el, az) = (-0.4 + next(), std::f64::consts::TAU * next());
+        let d = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
+        let alpha = 0.1 + 1.4 * next();
+        let dist = 5.0;
+        let centre = d.map(|v| (dist * v) as f32);
+        let radius = (dist * alpha.sin()) as f32;
+        let light = Light::sphere(centre, radius, Cone::Asin);
+        let Some(region) = LightRegion::new(&light) else {
+            continue;
+        };
+        let u_az = std::f64::consts::TAU * next();
+        let u = glam::Vec3::new(u_az.cos() as f32, u_az.sin() as f32, 0.0);
+        let mut kinks = Breakpoints::empty();
+        region.kinks(u, &mut kinks);
+        let (lo, hi) = region.dot_range(u);
+        let mut known: Vec<f32> = kinks.s[..kinks.len].to_vec();
+        known.extend([lo, hi]);
+        // The cone's boundary circle w(t) = cos α d̂ + sin α (cos t e₁ + sin t e₂), with the
+        // f32 axis and half-angle the kernel holds; u · w is extreme at t* and t* + π.
+        let axis = normalise(centre.map(f64::from));
+        let alpha =
+            (f64::from(radius) / dot(centre.map(f64::from), centre.map(f64::from)).sqrt()).asin();
+        let e1 = normalise(cross(axis, [0.0, 0.0, 1.0]));
+        let e2 = cross(axis, e1);
+        let u64s = f64s(u);
+        let t_star = dot(u64s, e2).atan2(dot(u64s, e1));
+        for t in [t_star, t_star + std::f64::consts::PI] {
+            let w: [f64; 3] = [0, 1, 2]
+                .map(|i| alpha.cos() * axis[i] + alpha.sin() * (t.cos() * e1[i] + t.sin() * e2[i]));
+            if w[2] < 1e-6 {
+                continue;
+            }
+            let value = dot(u64s, w);
+            let miss = known
+                .iter()
+                .map(|&k| (f64::from(k) - value).abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                miss < 1e-5,
+                "cone {centre:?}, α {alpha}: band tangent at u·w = {value} not among the kinks \
+                 and range ends {known:?}"
+            );
+            checked += 1;
+            if value > f64::from(lo) + 1e-4 && value < f64::from(hi) - 1e-4 {
+                inside += 1;
+            }
+            worst = worst.max(miss);
+        }
+    }
+    println!(
+        "{checked} tangencies above the horizon ({inside} inside the range), worst offset {worst:.2e}"
+    );
+    assert!(
+        inside > 50,
+        "too few tangencies inside the range drawn: {inside}"
+    );
+}
+
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],

@@ -107,8 +107,21 @@ impl SphereCap {
         (c - r, c + r)
     }
 
-    /// Adds `u · w` at the (up to two) points where the cone's boundary meets the horizon.
+    /// Adds the values of `u · w` where the lit chord of the circle `u · w = const` has a
+    /// kink: where the circle is tangent to the cone's boundary from inside (the cone holds
+    /// `−u` or `u`, so that the circles around it lie wholly inside up to `cos(θ ± α)`, the
+    /// tangency beyond the pole; [`SphereCap::dot_range`]'s ends are the other tangencies)
+    /// and at the (up to two) points where the cone's boundary meets the horizon.
     pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
+        if self.alpha < math::PI {
+            let theta = math::angle_between(u, self.axis);
+            if theta + self.alpha > math::PI {
+                out.push(math::cos(theta + self.alpha));
+            }
+            if theta < self.alpha {
+                out.push(math::cos(theta - self.alpha));
+            }
+        }
         let r = math::sqrt(self.axis.x * self.axis.x + self.axis.y * self.axis.y);
         let c = math::cos(self.alpha) / r;
         if !(self.alpha < math::PI && r > 0.0 && math::abs(c) <= 1.0) {
