@@ -28,16 +28,20 @@ digits. Beyond |x| = 8 nothing: the Gaussian holds 1.2e-15 of its mass there (th
 stops at 4.5, 6.8e-6), so a light that the bands reach only that far out has the exact
 value 0 here.
 
-No conditioning is computed: one query's kappa would need ~50 further quadratures. The
-kernel's error here is dominated by the extent rule's own quadrature and its cut at
-4.5 standard deviations, which is what this sweep measures
+The kernel's window is part of its model, as Werner's 6-sigma window is of the coherent
+sum: the extent rule integrates |x| <= 4.5 only. So each query also carries `window`, the
+same integral over |x| <= 4.5 alone (its pieces are cut there and refined against their own
+sum), which is what the kernel's arithmetic and quadrature are measured against; `tail`,
+the share of the whole value from beyond, is the model's error from the window.
+
+No conditioning is computed: one query's kappa would need ~50 further quadratures
 (`kernel/tests/light_extent_sweep.rs`, `docs/stability.md` *Area lights*).
 
 Usage: python3 reference/light_extent_sweep.py [--count N] [--seed-offset K] [--out DIR]
 Writes DIR/light_extent.csv (default reference/golden/sweep/): `light_sweep.py`'s columns
-without kappa, kappa_s and reach, plus `single`, the same query's exact single-band value, and
+without kappa, kappa_s and reach, plus `single`, the same query's exact single-band value,
 `tail`, the share of the exact value that comes from bands beyond 4.5 standard deviations
-(the kernel's window, `EXTENT_SDS`).
+(the kernel's window, `EXTENT_SDS`), and `window`, the exact value of the bands within it.
 """
 import sys
 import time
@@ -115,60 +119,68 @@ def kinks_c(s, reg):
     return [c for c in out if -1 <= c <= 1]
 
 
-def gaussian_integral(s, wo, reg, lam_um, sd):
-    """int phi(x) L(x sd) dx over |x| <= X_MAX, the sum of the pieces' error estimates, and
-    the part of the integral from |x| > X_KERNEL.
+def gaussian_integral(s, wo, reg, lam_um, sd, x_max=X_MAX):
+    """int phi(x) L(x sd) dx over |x| <= x_max, the sum of the pieces' error estimates, the
+    part of the integral from |x| <= X_KERNEL and its error estimate.
     A piece is halved until its estimate is below 1e-12 of the sum of |pieces| between the
-    kinks (or it is narrower than 1e-6)."""
+    kinks on its side of X_KERNEL, or it is narrower than 1e-6: the part within the window
+    is refined against its own size, however small a share of the whole it is."""
     t = ls.unit([s["tx"], s["ty"]])
     wo_t = wo[0] * t[0] + wo[1] * t[1]
-    ends = {mp.mpf(-X_MAX), mp.mpf(X_MAX), -mp.mpf(X_KERNEL), mp.mpf(X_KERNEL)}
+    ends = {-mp.mpf(x_max), mp.mpf(x_max), -mp.mpf(X_KERNEL), mp.mpf(X_KERNEL)}
     cuts = sorted({(c + wo_t) / sd for c in kinks_c(s, reg)} | ends)
-    cuts = [x for x in cuts if -X_MAX <= x <= X_MAX]
+    cuts = [x for x in cuts if -x_max <= x <= x_max]
 
     def f(x):
         return mp.npdf(x) * chord(s, wo, reg, lam_um, x * sd)
 
+    def inside(a, b):
+        return abs(a + b) / 2 <= X_KERNEL
+
     first = [(a, b, *mp.quad(f, [a, b], error=True)) for a, b in zip(cuts, cuts[1:]) if b > a]
     scale = sum(abs(v) for _, _, v, _ in first)
-    tol = mp.mpf(10) ** -12 * scale
-    total, err, tail = mp.mpf(0), mp.mpf(0), mp.mpf(0)
+    scale_in = sum(abs(v) for a, b, v, _ in first if inside(a, b))
+    tol, tol_in = mp.mpf(10) ** -12 * scale, mp.mpf(10) ** -12 * scale_in
+    total, err, win, err_in = mp.mpf(0), mp.mpf(0), mp.mpf(0), mp.mpf(0)
     stack = first
     while stack:
         a, b, v, e = stack.pop()
-        if e > tol and b - a > mp.mpf(10) ** -6:
+        if e > (tol_in if inside(a, b) else tol) and b - a > mp.mpf(10) ** -6:
             mid = (a + b) / 2
             stack += [(a, mid, *mp.quad(f, [a, mid], error=True)), (mid, b, *mp.quad(f, [mid, b], error=True))]
             continue
         total += v
         err += e
-        if abs(a + b) / 2 > X_KERNEL:
-            tail += v
-    return total, err, tail
+        if inside(a, b):
+            win += v
+            err_in += e
+    return total, err, win, err_in
 
 
 def value(q):
     """The exact Gaussian-weighted value of query `q`, its single-band value, the
-    quadrature's estimated relative error, and the share of the value from beyond the
-    kernel's window."""
+    quadrature's estimated relative error, the share of the value from beyond the kernel's
+    window, the exact value within the window and its estimated relative error."""
     parts = ls.Parts(q)
     single = parts.total()
     if parts.reg is None:
-        return mp.mpf(0), single, 0.0, 0.0
+        return mp.mpf(0), single, 0.0, 0.0, mp.mpf(0), 0.0
     sig = mp.mpf(q["sigma"])
     sd = parts.lam / (2 * mp.sqrt(2) * mp.pi * sig)
-    total, err, tail = mp.mpf(0), mp.mpf(0), mp.mpf(0)
+    total, err, win, err_in = mp.mpf(0), mp.mpf(0), mp.mpf(0), mp.mpf(0)
     for k, s in enumerate(q["scratches"]):
         weight = parts.p[k] * parts.d2[k] / (mp.pi * sig * sig)
         if weight == 0:
             continue
-        g, e, t = gaussian_integral(s, parts.wo, parts.reg[0], parts.lam, sd)
+        g, e, w, e_in = gaussian_integral(s, parts.wo, parts.reg[0], parts.lam, sd)
         total += weight * g
         err += abs(weight) * e
-        tail += weight * t
+        win += weight * w
+        err_in += abs(weight) * e_in
     rel = float(err / abs(total)) if total != 0 else 0.0
-    share = float(tail / total) if total != 0 else 0.0
-    return total, single, rel, share
+    share = float((total - win) / total) if total != 0 else 0.0
+    rel_in = float(err_in / abs(win)) if win != 0 else 0.0
+    return total, single, rel, share, win, rel_in
 
 
 def main():
@@ -180,10 +192,12 @@ def main():
     rows, t0 = [], time.time()
     while len(rows) < args.count:
         q = ls.draw(rng)
-        ref, single, quad_err, tail = value(q)
+        ref, single, quad_err, tail, win, win_err = value(q)
         if quad_err > 1e-10:
             print(f"quadrature error estimate {quad_err:.1e}: redrawn", file=sys.stderr)
             continue
+        if win_err > 1e-10:
+            print(f"query {len(rows)}: the window's error estimate is {win_err:.1e}", file=sys.stderr)
         lit = 0
         reg = ls.region(q)
         if reg is not None:
@@ -191,10 +205,11 @@ def main():
             lit = sum(len(ls.Band(s, wo).lit(reg[0])) for s in q["scratches"])
         full = ls.row(q, ref, 0.0, lit, 0.0, 0.0)
         r = [full[i] for i in keep]
-        rows.append(r + [mp.nstr(single, 17, min_fixed=1, max_fixed=0), "%.4g" % tail])
+        exact = [mp.nstr(v, 17, min_fixed=1, max_fixed=0) for v in (single, win)]
+        rows.append(r + [exact[0], "%.4g" % tail, exact[1]])
         progress(len(rows), args.count, 20)
     print(f"{len(rows)} queries, {time.time() - t0:.0f} s", file=sys.stderr)
-    write_csv(args.out, "light_extent", [head[i] for i in keep] + ["single", "tail"], rows)
+    write_csv(args.out, "light_extent", [head[i] for i in keep] + ["single", "tail", "window"], rows)
 
 
 if __name__ == "__main__":

@@ -234,9 +234,10 @@ impl LightRegion {
         }
     }
 
-    /// Adds the values of `u · w` at the light's corners, where the chord of a band
-    /// `u · w = c` has kinks: polygon vertices above the horizon, and the points where the
-    /// light's boundary meets the horizon.
+    /// Adds the values of `u · w` where the chord of a band `u · w = c` has kinks: polygon
+    /// vertices above the horizon, the points where the light's boundary meets the horizon,
+    /// and where a band is tangent to the boundary inside the light's range (an edge, or a
+    /// sphere's cone where it holds `±u`).
     pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
         if LightKind::from_u32(self.kind) == LightKind::Polygon {
             self.polygon.kinks(u, out)
@@ -372,17 +373,31 @@ pub struct Across {
 /// Gaussian beyond holds 6.8e-6 of its mass.
 const EXTENT_SDS: f32 = 4.5;
 /// Widest panel of the extent rule (standard deviations): the 8-point rule in `1 − cos t`
-/// integrates the bare Gaussian over any such panel to 9e-5 of its total mass, and each
-/// panel is rescaled by the exact Gaussian mass (erf), which removes even that.
-const EXTENT_PANEL_SDS: f32 = 3.0;
+/// integrates the bare Gaussian over any such panel to 5e-5 of the panel's mass (3 sd:
+/// 1.2e-4), and each panel is rescaled by its exact Gaussian mass, which removes even that;
+/// what is left is the rule's error on the Gaussian times the chord, 1.4e-4 on a 2.9-sd
+/// panel of a 0.04-rad sphere at the horizon (`docs/stability.md` *Panels*).
+const EXTENT_PANEL_SDS: f32 = 2.5;
 /// Widest panel of the extent rule in units of `δ = λ/(W·sd)`, the offset over which the
 /// band moves by one lobe spacing `1/W` of `|M − P|²`: the lit chord's ends cross the lobes
 /// as the band moves, so its integral ripples on that scale (and faster where a chord end
-/// runs along the light's boundary). Only grooves wider than `4.4σ/3 ≈ 1.5σ` have
-/// `δ/2` below [`EXTENT_PANEL_SDS`].
+/// runs along the light's boundary, which [`end_sweep`] measures). Only grooves wider than
+/// `2√2πσ/5 ≈ 1.8σ` have `δ/2` below [`EXTENT_PANEL_SDS`].
 const EXTENT_PANEL_LOBES: f32 = 0.5;
+/// Most e-folds of the Gaussian one panel of the extent rule spans (`x²/2` from one end to
+/// the other, or from the centre to the farther end of a panel across it), as a 3-sd panel
+/// from the centre does: a panel from 2.1 to 4.4 (7.3 e-folds, the integrand falling
+/// 1 400-fold) was 2.9e-4 off.
+const EXTENT_PANEL_EFOLDS: f32 = 4.5;
 /// Most panels between two cuts of the extent rule (8 chords each).
 const EXTENT_MAX_PIECES: f32 = 32.0;
+/// Most lit-chord ends [`end_sweep`] follows (four chords); a band with more is left to
+/// the lobe-step panels alone.
+const MAX_CHORD_ENDS: usize = 8;
+/// Where between two cuts [`end_sweep`] places the bands it compares, as a fraction of the
+/// interval from each end: inside, so that a chord that opens or closes at a cut (a band
+/// tangent to the light) is met with the same count of ends at both.
+const SWEEP_INSET: f32 = 1.0e-3;
 /// `1/√(2π)`.
 const FRAC_1_SQRT_TAU: f32 = 0.398_942_28;
 
@@ -564,24 +579,55 @@ fn extent_power(
         i += 1;
     }
     specular_cuts(region, frame, wo, wo_t, across, sd, (x_lo, x_hi), &mut cuts);
-    cuts.sort();
     let lobe = EXTENT_PANEL_LOBES * across.lambda / (across.width * sd);
     let widest = if lobe > 0.0 && lobe < EXTENT_PANEL_SDS {
         lobe
     } else {
         EXTENT_PANEL_SDS
     };
-    // The light covers the whole window with no kink in it and the chord does not ripple
-    // across lobes within a panel: it is smooth across the band, and 5-point Gauss–Hermite
-    // is exact to degree 9 at a fifth of the cost.
-    if cuts.len == 2 && x_lo <= -EXTENT_SDS && x_hi >= EXTENT_SDS && widest == EXTENT_PANEL_SDS {
+    // The most lobes a chord end can sweep anywhere: an end's `ξ₂` is `(w·b₃ + wo·b₃)/λ`,
+    // `w` in the light.
+    let b3 = Vec3::new(frame.bitangent.x, frame.bitangent.y, 0.0);
+    let (b_lo, b_hi) = region.dot_range(b3);
+    let sweep_bound = (b_hi - b_lo) * across.width / across.lambda;
+    // The panels of one cut interval: at most `widest`, at most `EXTENT_PANEL_EFOLDS` e-folds
+    // of the Gaussian, and at most `EXTENT_PANEL_LOBES` of the lobes a chord end sweeps
+    // across the interval (measured only where the bound allows more).
+    let pieces_of = |a: f32, b: f32| {
+        let efolds = if a >= 0.0 {
+            0.5 * (b * b - a * a)
+        } else if b <= 0.0 {
+            0.5 * (a * a - b * b)
+        } else {
+            0.5 * math::max(a * a, b * b)
+        };
+        let base = math::ceil(math::max((b - a) / widest, efolds / EXTENT_PANEL_EFOLDS));
+        let lobes = if sweep_bound > EXTENT_PANEL_LOBES * base {
+            end_sweep(region, frame, wo, across, sd, a, b)
+        } else {
+            0.0
+        };
+        let want = math::max(base, math::ceil(lobes / EXTENT_PANEL_LOBES));
+        math::clamp(want, 1.0, EXTENT_MAX_PIECES)
+    };
+    // The light covers the whole window with no kink in it, and neither the lobe step nor
+    // the chord ends' sweep asks for more panels than panels of the widest width would be:
+    // the chord is smooth across the band, and 5-point Gauss–Hermite is exact to degree 9 at
+    // a fifth of the cost.
+    if cuts.len == 2
+        && x_lo <= -EXTENT_SDS
+        && x_hi >= EXTENT_SDS
+        && widest == EXTENT_PANEL_SDS
+        && pieces_of(x_lo, x_hi) <= math::ceil((x_hi - x_lo) / EXTENT_PANEL_SDS)
+    {
         return fixed_rule_power(BandRule::Hermite5, region, frame, wo, across, sd);
     }
+    cuts.sort();
     let mut sum = 0.0;
     let mut c = 0;
     while c + 1 < cuts.len && c + 1 < MAX_CUTS {
         let (a, b) = (cuts.s[c], cuts.s[c + 1]);
-        let pieces = math::clamp(math::ceil((b - a) / widest), 1.0, EXTENT_MAX_PIECES) as u32;
+        let pieces = pieces_of(a, b) as u32;
         let h = (b - a) / pieces as f32;
         let mut p = 0;
         while p < pieces {
@@ -609,9 +655,11 @@ fn extent_power(
                 k += 1;
             }
             if norm > 0.0 {
-                let exact = 0.5
-                    * (math::erf((start + h) * core::f32::consts::FRAC_1_SQRT_2)
-                        - math::erf(start * core::f32::consts::FRAC_1_SQRT_2));
+                // The panel's Gaussian mass, not as a difference of `erf` values: beyond
+                // ~3 standard deviations both are within a few ulps of 1, and a narrow
+                // panel's mass kept only the difference's rounding (20 % off at 4.3).
+                let exact =
+                    math::gauss_interval_centered(start + 0.5 * h, 0.5 * h, 1.0) * FRAC_1_SQRT_TAU;
                 sum += acc * (exact / norm);
             }
             p += 1;
@@ -619,6 +667,81 @@ fn extent_power(
         c += 1;
     }
     sum
+}
+
+/// The ends `ξ₂` (1/µm) of the lit chords of the band at `offset` (direction cosines), in
+/// the order [`lit_intervals`] gives them, and their count (`None` beyond
+/// [`MAX_CHORD_ENDS`]).
+#[inline]
+fn chord_ends(
+    region: &LightRegion,
+    frame: &SegmentFrame,
+    wo: Vec3,
+    lambda: f32,
+    offset: f32,
+    ends: &mut [f32; MAX_CHORD_ENDS],
+) -> Option<usize> {
+    let mut n = 0;
+    if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, offset) {
+        lit_intervals(region, &band, |p0, p1, _| {
+            if n + 1 < MAX_CHORD_ENDS {
+                ends[n] = band.xi2(p0.s, lambda);
+                ends[n + 1] = band.xi2(p1.s, lambda);
+            }
+            n += 2;
+        });
+    }
+    if n <= MAX_CHORD_ENDS { Some(n) } else { None }
+}
+
+/// How many lobes `1/W` of `|M − P|²` a lit chord's end sweeps between the bands at
+/// offsets `a` and `b` (standard deviations) with no cut between them: the most any end
+/// moves in `ξ₂`, times `W`. Between cuts the chords neither appear nor vanish and each end
+/// runs along one boundary (an edge, the cone, the horizon) one way, so the ends at the two
+/// bands pair up in order. Where an end runs along an edge that meets the band at a shallow
+/// angle it moves many times faster than the band ([`EXTENT_PANEL_LOBES`]' a-priori step
+/// `δ` assumes the band's own pace), and the chord ripples that much faster; 0 where the ends
+/// do not pair up.
+fn end_sweep(
+    region: &LightRegion,
+    frame: &SegmentFrame,
+    wo: Vec3,
+    across: &Across,
+    sd: f32,
+    a: f32,
+    b: f32,
+) -> f32 {
+    let inset = SWEEP_INSET * (b - a);
+    let (mut at_a, mut at_b) = ([0.0; MAX_CHORD_ENDS], [0.0; MAX_CHORD_ENDS]);
+    let na = chord_ends(
+        region,
+        frame,
+        wo,
+        across.lambda,
+        (a + inset) * sd,
+        &mut at_a,
+    );
+    let nb = chord_ends(
+        region,
+        frame,
+        wo,
+        across.lambda,
+        (b - inset) * sd,
+        &mut at_b,
+    );
+    let (Some(na), Some(nb)) = (na, nb) else {
+        return 0.0;
+    };
+    if na != nb {
+        return 0.0;
+    }
+    let mut most: f32 = 0.0;
+    let mut i = 0;
+    while i < na && i < MAX_CHORD_ENDS {
+        most = math::max(most, math::abs(at_b[i] - at_a[i]));
+        i += 1;
+    }
+    most * across.width
 }
 
 /// Adds to `cuts` the offsets `x ∈ (x_lo, x_hi)` (standard deviations) where the band's

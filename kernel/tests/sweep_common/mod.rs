@@ -47,6 +47,20 @@ impl Table {
         }
     }
 
+    /// [`Table::load`]'s table, or `None` where its file does not exist.
+    pub fn load_optional(env: &str, default_dir: &str, family: &str) -> Option<Table> {
+        let path = match std::env::var(env) {
+            Ok(dir) => format!("{dir}/{family}.csv"),
+            Err(_) => format!(
+                "{}/../{default_dir}/{family}.csv",
+                env!("CARGO_MANIFEST_DIR")
+            ),
+        };
+        std::path::Path::new(&path)
+            .exists()
+            .then(|| Table::read(&path))
+    }
+
     /// `default_dir/family.csv` in the repository, whatever the environment says.
     pub fn committed(default_dir: &str, family: &str) -> Table {
         let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
