@@ -8,7 +8,9 @@ noticing, and the subset could then no longer be regenerated or extended. This r
 generator in `reference/*_sweep.py` and `reference/ghs/domain_sweep.py` with `--count 2`
 into a temporary directory (seconds each), and `light_sweep.py --found` whole (~20 s), and
 compares what it wrote with the committed files: the subsets are the first queries of the
-same seeded draws (`docs/stability.md`), so the lines must be identical.
+same seeded draws (`docs/stability.md`), so the lines must be identical. The conditioning
+script `light_extent_kappa.py` is run for one committed row of `light_extent_kappa.csv`
+(KAPPA_ROW, a few seconds) on a copy of `light_extent.csv`, and must write that row again.
 
 Needs mpmath, numpy and scipy (`reference/requirements.txt`; the test command installs them
 into its virtual environment). Usage: python3 reference/smoke.py [NAME ...] (a subset of the
@@ -40,6 +42,10 @@ GENERATORS = {
     "ghs": (["ghs/domain_sweep.py", "--count", "2", "--jobs", "1"], GHS_SWEEP,
             list(GHS_FAMILIES), False),
 }
+# The row of `light_extent_kappa.csv` the smoke recomputes: a sphere light and one scratch,
+# the fewest neighbours.
+KAPPA_ROW = 48
+NAMES = list(GENERATORS) + ["light_extent_kappa"]
 
 
 def first_difference(got, want):
@@ -88,12 +94,36 @@ def run(name):
         return failures
 
 
+def run_kappa():
+    """`light_extent_kappa.py --rows KAPPA_ROW` on a copy of the committed table: the row it
+    writes must be the committed one (its failures, empty when it matches)."""
+    name = "light_extent_kappa"
+    with tempfile.TemporaryDirectory() as out:
+        (Path(out) / "light_extent.csv").write_text((SWEEP / "light_extent.csv").read_text())
+        t0 = time.time()
+        proc = subprocess.run([sys.executable, str(HERE / "light_extent_kappa.py"),
+                               "--rows", str(KAPPA_ROW), "--dir", out],
+                              cwd=HERE, capture_output=True, text=True)
+        took = time.time() - t0
+        if proc.returncode != 0:
+            tail = "\n    ".join(proc.stderr.strip().splitlines()[-6:])
+            print(f"{name}: exit status {proc.returncode}", flush=True)
+            return [f"{name}: exit status {proc.returncode}\n    {tail}"]
+        got = (Path(out) / "light_extent_kappa.csv").read_text().splitlines()
+        lines = (SWEEP / "light_extent_kappa.csv").read_text().splitlines()
+        want = lines[:1] + [line for line in lines[1:] if line.split(",")[0] == str(KAPPA_ROW)]
+        diff = first_difference(got, want)
+        print(f"{name}: row {KAPPA_ROW}, {took:.1f} s, {'ok' if not diff else 'DIFFERENT'}",
+              flush=True)
+        return [f"{name}: light_extent_kappa.csv {diff}"] if diff else []
+
+
 def main():
-    names = sys.argv[1:] or list(GENERATORS)
-    unknown = [n for n in names if n not in GENERATORS]
+    names = sys.argv[1:] or NAMES
+    unknown = [n for n in names if n not in NAMES]
     if unknown:
-        sys.exit(f"unknown generator(s) {unknown}; known: {', '.join(GENERATORS)}")
-    failures = [f for n in names for f in run(n)]
+        sys.exit(f"unknown generator(s) {unknown}; known: {', '.join(NAMES)}")
+    failures = [f for n in names for f in (run_kappa() if n == "light_extent_kappa" else run(n))]
     for f in failures:
         print(f, file=sys.stderr)
     sys.exit(1 if failures else 0)

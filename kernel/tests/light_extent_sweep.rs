@@ -10,18 +10,19 @@
 //! integral over the kernel's window `|x| ≤ 4.5` alone (column `window`). The window is part
 //! of the extent rule's model, as the 6σ window is of Werner's coherent sum: the rule's
 //! arithmetic and quadrature are measured against `window`, and the share of the whole value
-//! from beyond it (column `tail`) is reported apart as the model's error. The reference
-//! computes no conditioning (a query's κ would take ~50 more such quadratures), so the
-//! errors below are relative errors against `FLOOR` (1e-4) alone. For the fixed-band rules
-//! the error is against the whole line: how far their fixed bands are from the Gaussian
-//! model. Velinov's single band (`bands = 1`) against the same exact value is printed too:
+//! from beyond it (column `tail`) is reported apart as the model's error. The bound is #20's
+//! `max(1e-4, 8κ)`, κ the window value's one-ulp conditioning, which takes ~60 further
+//! quadratures a query: `reference/light_extent_kappa.py` computes it for the rows over
+//! 1e-4 (`light_extent_kappa.csv`; the test prints the rows over 1e-4 that lack it, and
+//! counts them against 1e-4 alone). For the fixed-band rules the error is against the whole
+//! line, relative to 1e-4: how far their fixed bands are from the Gaussian model. Velinov's single band (`bands = 1`) against the same exact value is printed too:
 //! the error of Eq. 27's model, not of its arithmetic (that is `light_domain_sweep.rs`).
 //!
-//! The extent rule does not meet #20's `1e-4` over this domain yet: the test prints how many
-//! lit queries do and where the rest are (near the horizon; neither: lights below 1e-3
-//! rad), see `docs/stability.md` *The Gaussian across the band*. Asserted, as a ratchet:
-//! every lit query within the committed subset's measured worst ([`RATCHET`],
-//! [`RATCHET_HORIZON`]), at least [`RATCHET_WITHIN`] within 1e-4, and a value of at most
+//! The extent rule does not meet that bound over this domain yet: the test prints how many
+//! lit queries do and where the rest are (near the horizon or not; all lights below 1e-3
+//! rad), see `docs/stability.md` *The Gaussian across the band*. Asserted, as a
+//! ratchet: every lit query within the committed subset's measured worst ([`RATCHET`],
+//! [`RATCHET_HORIZON`]), at least [`RATCHET_WITHIN`] within the bound, and a value of at most
 //! [`TINY`] wherever the window's exact value is (no band within 4.5 standard deviations
 //! meets the light).
 //!
@@ -48,14 +49,16 @@ const MIN_QUERIES: usize = 400;
 /// that bound, so that a change can only improve them; a fix lowers them. Since the window
 /// is measured apart, the cuts at bands tangent inside a sphere's cone, the panels' Gaussian
 /// mass without `erf` differences, the panels following the chord ends' sweep and panels of
-/// at most 2.5 sd and 4.5 e-folds: 300 lit queries within 1e-4 of the window's value (282
-/// before them; 275 on the whole line). History on the whole line before: other 1.6e-2 since the cuts where a
-/// band is tangent to a polygon edge, 2.4e-2 since the cuts at the band's specular point,
-/// 0.31 before them; near the horizon 1.0 (values below 1e-11 wholly beyond the window),
-/// 7.0e3 before the band circle kept `cos φ`; within 1e-4: 275, 266, 257, 207.
-const RATCHET: f64 = 55.0;
-const RATCHET_HORIZON: f64 = 55.0;
-const RATCHET_WITHIN: usize = 339;
+/// at most 2.5 sd and 4.5 e-folds: 360 of 383 lit queries within the bound (346 before
+/// them), worst 24× away from the horizon (48× before) and 53× near it; 300 within 1e-4 of
+/// the window's value (282 before; 275 on the whole line). History on the whole line before: other 1.6e-2
+/// since the cuts where a band is tangent to a polygon edge, 2.4e-2 since the cuts at the
+/// band's specular point, 0.31 before them; near the horizon 1.0 (values below 1e-11 wholly
+/// beyond the window), 7.0e3 before the band circle kept `cos φ`; within 1e-4: 275, 266,
+/// 257, 207.
+const RATCHET: f64 = 24.0;
+const RATCHET_HORIZON: f64 = 54.0;
+const RATCHET_WITHIN: usize = 360;
 
 /// The band rules compared: `LightParams::bands` and a name.
 const RULES: [(u32, &str); 4] = [
