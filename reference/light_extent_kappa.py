@@ -32,36 +32,10 @@ import mpmath as mp
 import light_extent_sweep as les
 import light_sweep as ls
 from parallel import ordered_map
-from sweep_io import f32
 
 mp.mp.dps = 30
 
 DEFAULT_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "golden", "sweep")
-
-
-def query_of(r):
-    """The query (as `light_sweep.draw` makes it) whose inputs are CSV row `r`."""
-    def f(v):
-        return f32(float(v))
-
-    count = int(r["count"])
-    q = dict(
-        kind=int(r["kind"]),
-        cone=int(r["cone"]),
-        sphere=[f(r["l_" + c]) for c in "xyzr"],
-        verts=[[f(r["v%d_%s" % (i, c)]) for c in "xyz"] for i in range(count)],
-        wo=[f(r["wo_" + c]) for c in "xyz"],
-        lambda_nm=f(r["lambda_nm"]),
-        x=[f(r["x_x"]), f(r["x_y"])],
-        sigma=f(r["sigma"]),
-        eta=int(r["eta"]),
-        depth_term=int(r["depth_term"]),
-        scratches=[
-            {k: f(r["s%d_%s" % (i, k)]) for k in ("cx", "cy", "tx", "ty", "h", "w", "d")}
-            for i in range(int(r["n"]))
-        ],
-    )
-    return q
 
 
 class Window:
@@ -110,7 +84,7 @@ def redo_of(kind, n, sigma_moved):
 
 def kappa(r):
     """(kappa, window value) of CSV row `r`."""
-    q = query_of(r)
+    q = ls.query_of(r)
     base = Window(q)
     ref = base.total()
     if ref == 0:

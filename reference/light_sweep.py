@@ -497,6 +497,31 @@ def row(q, ref, kappa, lit, kappa_s, reach):
     return r + [mp.nstr(reach, 6, min_fixed=1, max_fixed=0)]
 
 
+def query_of(r):
+    """The query (as `draw` makes it) whose inputs are CSV row `r` (a dict by column), the
+    inverse of `row`: each input read back as the float32 it was written from."""
+    def f(v):
+        return f32(float(v))
+
+    count = int(r["count"])
+    return dict(
+        kind=int(r["kind"]),
+        cone=int(r["cone"]),
+        sphere=[f(r["l_" + c]) for c in "xyzr"],
+        verts=[[f(r["v%d_%s" % (i, c)]) for c in "xyz"] for i in range(count)],
+        wo=[f(r["wo_" + c]) for c in "xyz"],
+        lambda_nm=f(r["lambda_nm"]),
+        x=[f(r["x_x"]), f(r["x_y"])],
+        sigma=f(r["sigma"]),
+        eta=int(r["eta"]),
+        depth_term=int(r["depth_term"]),
+        scratches=[
+            {k: f(r["s%d_%s" % (i, k)]) for k in ("cx", "cy", "tx", "ty", "h", "w", "d")}
+            for i in range(int(r["n"]))
+        ],
+    )
+
+
 # ------------------------------------------------------------------ self-check
 def check(count=40):
     """Lit arcs against a dense sampling of the half circle, and A(q1) - A(q0) against
