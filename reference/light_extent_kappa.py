@@ -71,15 +71,14 @@ class Window:
 
 
 def redo_of(kind, n, sigma_moved):
-    """Which factors a neighbour of `light_sweep.neighbours`' `kind` changes."""
-    every, none = set(range(n)), set()
+    """Which factors a neighbour of `light_sweep.neighbours`' `kind` changes: those of
+    `light_sweep.changed_factors`, the band sum's window integral `g` for its `l`; every
+    factor for 'all' and for sigma, which also sets the band's standard deviation."""
     if kind == "all" or sigma_moved:
+        every = set(range(n))
         return {"p": every, "d": every, "g": every}
-    if kind == "p":
-        return {"p": every, "d": none, "g": none}
-    k, what = kind
-    return {"p": {k} if "p" in what else none, "d": {k} if what == "d" else none,
-            "g": {k} if "l" in what else none}
+    changed = ls.changed_factors(kind, n)
+    return {"p": changed["p"], "d": changed["d"], "g": changed["l"]}
 
 
 def kappa(r):

@@ -350,6 +350,16 @@ def neighbours(q, ulps=1):
             )
 
 
+def changed_factors(kind, n):
+    """The scratches whose factors a neighbour of `neighbours`' `kind` (not 'all') changes,
+    by factor: {'p': P_k, 'l': the band sum L_k, 'd': D2_k}, each a set of indices < n."""
+    if kind == "p":
+        return {"p": set(range(n)), "l": set(), "d": set()}
+    k, what = kind
+    return {"p": {k} if "p" in what else set(), "l": {k} if "l" in what else set(),
+            "d": {k} if what == "d" else set()}
+
+
 def conditioning(q, base):
     """kappa, and whether a neighbour is nonzero where the value is 0."""
     ref = base.total()
@@ -361,16 +371,13 @@ def conditioning(q, base):
             p2 = Parts.__new__(Parts)
             p2.q, p2.wo, p2.reg, p2.lam = q2, base.wo, base.reg, base.lam
             p2.p, p2.d2, p2.l = list(base.p), list(base.d2), list(base.l)
-            ks = range(len(q2["scratches"])) if kind == "p" else [kind[0]]
-            what = "p" if kind == "p" else kind[1]
-            for k in ks:
-                s = q2["scratches"][k]
-                if "p" in what:
-                    p2.p[k] = along(q2, s)
-                if "l" in what:
-                    p2.l[k] = band_sum(s, p2.wo, p2.reg, p2.lam)
-                if what == "d":
-                    p2.d2[k] = depth2(q2, s, p2.reg, p2.wo)
+            changed = changed_factors(kind, len(q2["scratches"]))
+            for k in changed["p"]:
+                p2.p[k] = along(q2, q2["scratches"][k])
+            for k in changed["l"]:
+                p2.l[k] = band_sum(q2["scratches"][k], p2.wo, p2.reg, p2.lam)
+            for k in changed["d"]:
+                p2.d2[k] = depth2(q2, q2["scratches"][k], p2.reg, p2.wo)
             v = p2.total()
         if ref == 0:
             flip = flip or v != 0
