@@ -39,6 +39,14 @@ pub struct BandCircle {
     pub b3: Vec3,
     /// `c = wi · t₃` on the band.
     pub c: f32,
+    /// The offset `c − c₀` from the band's centre line, exact (`c` itself is rounded).
+    pub offset: f32,
+    /// `c₀ = −wo_xy · t`, the centre line's `c`.
+    pub c0: f32,
+    /// `ρ₀ = √(1 − c₀²)`, the centre line's radius. A light narrower than an ulp of `c`
+    /// (~6e-8 near `|c| = 1/2`) keeps its shape across the bands only if each band is placed
+    /// by its exact `offset` from this one ([`super::sphere::SphereCap::crossings`]).
+    pub rho0: f32,
     /// Radius `√(1 − c²)`.
     pub rho: f32,
     /// `wo_xy · b`.
@@ -66,7 +74,8 @@ impl BandCircle {
         // view along the scratch (c → ±1) the plain `1 − c²` keeps only the absolute
         // accuracy ~ε of c², which put 1e-5 rad into the crossings of a band circle of
         // radius 0.018 (`reference/light_sweep.py`).
-        let rho = math::sqrt0(wo_b * wo_b + wo.z * wo.z + offset * (2.0 * wo_t - offset));
+        let rho0_sq = wo_b * wo_b + wo.z * wo.z;
+        let rho = math::sqrt0(rho0_sq + offset * (2.0 * wo_t - offset));
         if !(rho > 0.0) {
             return None;
         }
@@ -74,6 +83,9 @@ impl BandCircle {
             t3: Vec3::new(tangent.x, tangent.y, 0.0),
             b3: Vec3::new(bitangent.x, bitangent.y, 0.0),
             c,
+            offset,
+            c0: -wo_t,
+            rho0: math::sqrt0(rho0_sq),
             rho,
             wo_b,
         })

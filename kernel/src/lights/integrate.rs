@@ -223,6 +223,21 @@ impl LightRegion {
         }
     }
 
+    /// The offsets `(wi + wo)_xy · t` of the bands that meet the light: a polygon's
+    /// [`LightRegion::dot_range`] along `t₃` shifted by `wo_xy · t`, a sphere's
+    /// [`SphereCap::offset_range`], which agrees with its crossings.
+    pub fn offset_range(&self, frame: &SegmentFrame, wo: Vec3) -> (f32, f32) {
+        if LightKind::from_u32(self.kind) == LightKind::Polygon {
+            let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
+            let (lo, hi) = self
+                .polygon
+                .dot_range(Vec3::new(frame.tangent.x, frame.tangent.y, 0.0));
+            (lo + wo_t, hi + wo_t)
+        } else {
+            self.sphere.offset_range(frame.tangent, frame.bitangent, wo)
+        }
+    }
+
     /// A superset of [`LightRegion::dot_range`] that costs no trigonometry: a sphere's
     /// [`SphereCap::dot_bound`]; everything for a polygon.
     #[inline]
@@ -331,8 +346,16 @@ pub fn lit_intervals<V: FnMut(ArcPoint, ArcPoint, f32)>(
     visit: V,
 ) {
     let mut bp = ArcPoints::half_circle();
-    region.crossings(band, &mut bp);
-    bp.lit_intervals(|p| region.contains(band.point(p)), visit);
+    if LightKind::from_u32(region.kind) == LightKind::Polygon {
+        region.polygon.crossings(band, &mut bp);
+        bp.lit_intervals(|p| region.polygon.contains(band.point(p)), visit);
+    } else {
+        // A sphere decides its lit arcs by the numbers its crossings came from
+        // ([`SphereCap::holds_on`]).
+        let reach = region.sphere.band_reach(band);
+        region.sphere.crossings_with(band, &reach, &mut bp);
+        bp.lit_intervals(|p| region.sphere.holds_on(band, &reach, p), visit);
+    }
 }
 
 /// `∫ |η|² dξ₁` over ℝ (Parseval; 1/µm · µm² = µm).
@@ -559,9 +582,9 @@ fn extent_power(
 ) -> f32 {
     let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
     let t3 = Vec3::new(frame.tangent.x, frame.tangent.y, 0.0);
-    let (lo, hi) = region.dot_range(t3);
-    let x_lo = math::max((lo + wo_t) / sd, -EXTENT_SDS);
-    let x_hi = math::min((hi + wo_t) / sd, EXTENT_SDS);
+    let (lo, hi) = region.offset_range(frame, wo);
+    let x_lo = math::max(lo / sd, -EXTENT_SDS);
+    let x_hi = math::min(hi / sd, EXTENT_SDS);
     if !(x_hi > x_lo) {
         return 0.0;
     }
@@ -613,12 +636,18 @@ fn extent_power(
     // The light covers the whole window with no kink in it, and neither the lobe step nor
     // the chord ends' sweep asks for more panels than panels of the widest width would be:
     // the chord is smooth across the band, and 5-point Gauss–Hermite is exact to degree 9 at
-    // a fifth of the cost.
+    // a fifth of the cost. With no cut inside, the one interval's panel count is formed
+    // once, for this test and for the panels.
+    let whole = if cuts.len == 2 {
+        pieces_of(x_lo, x_hi)
+    } else {
+        0.0
+    };
     if cuts.len == 2
         && x_lo <= -EXTENT_SDS
         && x_hi >= EXTENT_SDS
         && widest == EXTENT_PANEL_SDS
-        && pieces_of(x_lo, x_hi) <= math::ceil((x_hi - x_lo) / EXTENT_PANEL_SDS)
+        && whole <= math::ceil((x_hi - x_lo) / EXTENT_PANEL_SDS)
     {
         return fixed_rule_power(BandRule::Hermite5, region, frame, wo, across, sd);
     }
@@ -627,7 +656,11 @@ fn extent_power(
     let mut c = 0;
     while c + 1 < cuts.len && c + 1 < MAX_CUTS {
         let (a, b) = (cuts.s[c], cuts.s[c + 1]);
-        let pieces = pieces_of(a, b) as u32;
+        let pieces = if cuts.len == 2 {
+            whole
+        } else {
+            pieces_of(a, b)
+        } as u32;
         let h = (b - a) / pieces as f32;
         let mut p = 0;
         while p < pieces {

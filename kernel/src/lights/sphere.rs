@@ -14,9 +14,9 @@
 //! the cancellation of `cos β − cos α` that makes the printed quadratic (Eq. 34) lose all
 //! f32 digits for lights below ~1e-3 rad.
 
-use super::band_circle::{ArcPoints, BandCircle, Breakpoints};
+use super::band_circle::{ArcPoint, ArcPoints, BandCircle, Breakpoints};
 use crate::math;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 gpu_enum! {
     /// Which cone a sphere subtends.
@@ -31,6 +31,20 @@ gpu_enum! {
 
 /// Absolute slack of [`SphereCap::dot_bound`].
 const DOT_BOUND_SLACK: f32 = 1.0e-5;
+
+/// The bands tangent to a cone's boundary, seen along `u` ([`SphereCap::tangents`]).
+struct Tangents {
+    /// `u · d̂`.
+    m_t: f32,
+    /// `cos(θ − α) − m_t`.
+    near: f32,
+    /// `cos(θ + α) − m_t`.
+    far: f32,
+    /// `θ < α`: the cone holds `u` (by [`SphereCap::contains`], which resolves a tiny cone).
+    holds_u: bool,
+    /// `θ + α > π`: the cone holds `−u`.
+    holds_minus_u: bool,
+}
 
 /// The cone of directions a spherical light fills.
 #[derive(Clone, Copy, Debug)]
@@ -85,16 +99,71 @@ impl SphereCap {
         self.alpha >= math::PI || (w - self.axis).length_squared() <= self.chord2
     }
 
+    /// The two bands `u · w = cos(θ ∓ α)` tangent to the cone's boundary (`θ` the angle from
+    /// `u` to `d̂`), from `m_t = u · d̂` and `|u × d̂|` (the components
+    /// [`SphereCap::crossings`] meets a band with) as `cos θ cos α ± sin θ sin α`. Forming `θ`
+    /// first rounded it to ~6e-8 rad near `π/2`, a noticeable part of a light below 1e-3 rad.
+    fn tangents(&self, u: Vec3) -> Tangents {
+        let m_t = u.dot(self.axis);
+        let r = u.cross(self.axis).length();
+        let sin_a = math::sin(self.alpha);
+        let h = math::sin(0.5 * self.alpha);
+        // cos(θ ∓ α) − m_t, with cos α = 1 − 2 sin²(α/2); `m_t` and `r` are taken as they
+        // are, not renormalised, as the crossings take them.
+        let common = -2.0 * m_t * h * h;
+        Tangents {
+            m_t,
+            near: common + r * sin_a,
+            far: common - r * sin_a,
+            holds_u: self.contains(u),
+            holds_minus_u: self.contains(-u),
+        }
+    }
+
     /// `[min, max]` of `u · w` (unit `u`) over the cone's directions `w`: the angle to `u`
     /// ranges over `θ ∓ α` clamped to `[0, π]`.
     pub fn dot_range(&self, u: Vec3) -> (f32, f32) {
         if self.alpha >= math::PI {
             return (-1.0, 1.0);
         }
-        let theta = math::angle_between(u, self.axis);
-        let near = math::max(theta - self.alpha, 0.0);
-        let far = math::min(theta + self.alpha, math::PI);
-        (math::cos(far), math::cos(near))
+        let t = self.tangents(u);
+        let lo = if t.holds_minus_u { -1.0 } else { t.m_t + t.far };
+        let hi = if t.holds_u { 1.0 } else { t.m_t + t.near };
+        (math::max(lo, -1.0), math::min(hi, 1.0))
+    }
+
+    /// The offsets `(wi + wo)_xy · t` of the bands of the scratch (`tangent`, `bitangent`)
+    /// and view `wo` that meet the cone, `[min, max]`: where `θ_c`, the band's angle from
+    /// `t₃`, is `θ_d ± α`. With `θ_d = θ₀ + A` (`SphereCap::band_angles`) and `B = θ₀ − θ_c`,
+    /// each end is `cos(θ₀ − B) − cos θ₀ = 2 sin(θ₀ − B/2) sin(B/2)`, which agrees with the
+    /// crossings to the rounding of `A` and `B` rather than an ulp of `cos θ_c` (~6e-8, as
+    /// much as 0.4 % of the range of a light below 1e-3 rad: a lit chord then began inside
+    /// the range's first panel or was cut off before its end, 5e-4 of a 2.7e-4-rad sphere's
+    /// power).
+    pub fn offset_range(&self, tangent: Vec2, bitangent: Vec2, wo: Vec3) -> (f32, f32) {
+        let wo_t = Vec2::new(wo.x, wo.y).dot(tangent);
+        let Some(band) = BandCircle::new_offset(tangent, bitangent, wo, 0.0) else {
+            // A view along the scratch: the band is a point; the plain range.
+            let (lo, hi) = self.dot_range(Vec3::new(tangent.x, tangent.y, 0.0));
+            return (lo + wo_t, hi + wo_t);
+        };
+        if self.alpha >= math::PI {
+            return (wo_t - 1.0, wo_t + 1.0);
+        }
+        let (a, ..) = self.band_angles(&band);
+        let theta0 = math::atan2(band.rho0, band.c0);
+        let end = |b: f32| 2.0 * math::sin(theta0 - 0.5 * b) * math::sin(0.5 * b);
+        let lo = if theta0 + a + self.alpha >= math::PI {
+            wo_t - 1.0
+        } else {
+            end(-(a + self.alpha))
+        };
+        let hi = if theta0 + a - self.alpha <= 0.0 {
+            wo_t + 1.0
+        } else {
+            end(self.alpha - a)
+        };
+        (lo, hi)
     }
 
     /// A cheap superset of [`SphereCap::dot_range`]: `u · d̂ ± (|w − d̂| + 1e-5)`, since
@@ -114,12 +183,12 @@ impl SphereCap {
     /// and at the (up to two) points where the cone's boundary meets the horizon.
     pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
         if self.alpha < math::PI {
-            let theta = math::angle_between(u, self.axis);
-            if theta + self.alpha > math::PI {
-                out.push(math::cos(theta + self.alpha));
+            let t = self.tangents(u);
+            if t.holds_minus_u {
+                out.push(t.m_t + t.far);
             }
-            if theta < self.alpha {
-                out.push(math::cos(theta - self.alpha));
+            if t.holds_u {
+                out.push(t.m_t + t.near);
             }
         }
         let r = math::sqrt(self.axis.x * self.axis.x + self.axis.y * self.axis.y);
@@ -137,24 +206,97 @@ impl SphereCap {
         }
     }
 
-    /// Adds where the band crosses the cone boundary (at most two points).
-    pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
-        if self.alpha >= math::PI {
-            return;
-        }
+    /// `A = θ_d − θ₀` and `B = θ₀ − θ_c`: the angles from `t₃` of the cone's axis (`θ_d`:
+    /// `cos θ_d = m_t`, `sin θ_d = R = √(m_b² + m_z²)`), of the band's centre line (`θ₀`: `c₀`,
+    /// `ρ₀`) and of the band (`θ_c`: `c`, `ρ`), each difference from its sine and cosine,
+    /// with `(m_b, m_z, R)`. `sin B ∝ ρ₀ c − c₀ ρ` is formed as
+    /// `offset (ρ₀ + c₀ (c + c₀)/(ρ₀ + ρ))` (`ρ₀ − ρ = offset (c + c₀)/(ρ₀ + ρ)`, both circles
+    /// on the same sphere `|wo|`) from the exact `offset`: the plain difference of products,
+    /// like `c` itself, kept ~6e-8 of absolute accuracy, noise in every chord across a light
+    /// below ~1e-3 rad (5e-4 of a 2.7e-4-rad sphere's power). `A` is the same for all the
+    /// bands of one scratch and view, so its rounding moves the whole light and leaves its
+    /// shape alone; at `offset = 0`, `B = 0`.
+    fn band_angles(&self, band: &BandCircle) -> (f32, f32, f32, f32, f32) {
         let (mt, mb, mz) = band.components(self.axis);
         let r = math::sqrt(mb * mb + mz * mz);
-        // β = |θ_d − θ_c|, θ_d = atan2(r, m_t) the axis's angle from t₃ and θ_c = atan2(ρ, c)
-        // the band's, as one atan2 of the difference's sine and cosine: the difference of
-        // the two angles (each up to π) kept only their absolute accuracy ~1e-7 rad, which a
-        // band crossing near the cone's edge magnifies (`reference/light_sweep.py`).
-        let beta = math::abs(math::atan2(
-            r * band.c - mt * band.rho,
-            mt * band.c + r * band.rho,
-        ));
+        let (c0, rho0) = (band.c0, band.rho0);
+        let a = math::atan2(r * c0 - mt * rho0, mt * c0 + r * rho0);
+        let b = if band.offset == 0.0 {
+            0.0
+        } else {
+            let sin_b = band.offset * (rho0 + c0 * (band.c + c0) / (rho0 + band.rho));
+            math::atan2(sin_b, c0 * band.c + rho0 * band.rho)
+        };
+        (a, b, mb, mz, r)
+    }
+
+    /// How far the band reaches into the cone, in the circle's own terms: the band meets the
+    /// boundary where `s m_b + z' m_z = g` ([`BandCircle::plane_crossings`]), and the slack
+    /// is `R − g = (cos β − cos α)/ρ = 2 sin((α+β)/2) sin((α−β)/2)/ρ`, `β = |A + B|` the
+    /// angle from the axis to the band (`SphereCap::band_angles`).
+    pub fn band_reach(&self, band: &BandCircle) -> BandReach {
+        if self.alpha >= math::PI {
+            return BandReach::ALL;
+        }
+        let (a, b, mb, mz, r) = self.band_angles(band);
+        let beta = math::abs(a + b);
         let slack =
             2.0 * math::sin(0.5 * (self.alpha + beta)) * math::sin(0.5 * (self.alpha - beta))
                 / band.rho;
-        band.plane_crossings(self.axis, math::cos(self.alpha), Some(slack), out);
+        BandReach { slack, mb, mz, r }
     }
+
+    /// Adds where the band crosses the cone boundary (at most two points).
+    pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
+        self.crossings_with(band, &self.band_reach(band), out);
+    }
+
+    /// [`SphereCap::crossings`] with the band's [`BandReach`] already formed.
+    pub fn crossings_with(&self, band: &BandCircle, reach: &BandReach, out: &mut ArcPoints) {
+        if self.alpha >= math::PI {
+            return;
+        }
+        band.plane_crossings(self.axis, math::cos(self.alpha), Some(reach.slack), out);
+    }
+
+    /// Whether the point `p` of the band is inside the cone, by the slack of its crossings:
+    /// `R − (s m_b + z' m_z) = R |p − p*|²/2 ≤ R − g`, `p*` the point nearest the axis.
+    /// [`SphereCap::contains`] of the band's point decided it apart from them, and for a
+    /// light below ~1e-3 rad the two disagreed by the rounding of `m_t`, which cut the lit
+    /// chord off short of its crossings near one end.
+    pub fn holds_on(&self, band: &BandCircle, reach: &BandReach, p: ArcPoint) -> bool {
+        if self.alpha >= math::PI {
+            return true;
+        }
+        if !(reach.r > 1.0e-12) {
+            // The band circle is centred on the axis: all or none of it is inside.
+            return self.contains(band.point(p));
+        }
+        let (ds, dz) = (p.s - reach.mb / reach.r, p.z - reach.mz / reach.r);
+        0.5 * reach.r * (ds * ds + dz * dz) <= reach.slack
+    }
+}
+
+/// How far one band reaches into a cone ([`SphereCap::band_reach`]), for its crossings and
+/// for deciding which of its arcs are lit by the same numbers.
+#[derive(Clone, Copy, Debug)]
+pub struct BandReach {
+    /// `R − g`.
+    pub slack: f32,
+    /// The axis's component along `b₃`.
+    pub mb: f32,
+    /// The axis's component along `z`.
+    pub mz: f32,
+    /// `R = √(m_b² + m_z²)`.
+    pub r: f32,
+}
+
+impl BandReach {
+    /// A cone that holds every direction.
+    const ALL: BandReach = BandReach {
+        slack: f32::INFINITY,
+        mb: 0.0,
+        mz: 0.0,
+        r: 1.0,
+    };
 }
