@@ -47,10 +47,11 @@ const MIN_QUERIES: usize = 400;
 /// measured worst error ÷ `max(1e-4, 8κ)` against the window's exact value by [`Cause`] (κ
 /// where `light_extent_kappa.csv` has it, else 0), and its count of lit queries within
 /// that bound, so that a change can only improve them; a fix lowers them. Since a sphere's
-/// bands are placed by their exact offset from the band's centre line and its range ends
-/// and lit arcs come from the same numbers as its crossings: 376 of 383 lit queries within
-/// the bound (360 before), every query away from the horizon within it (worst 24× before)
-/// and 9.5× near it (53× before); 321 within 1e-4 of the window's value (300 before). Since
+/// bands are placed by their exact offset from the band's centre line, its range ends and
+/// lit arcs come from the same numbers as its crossings and its horizon crossings are
+/// formed without cancellation: 380 of 383 lit queries within the bound (360 before),
+/// every query away from the horizon within it (worst 24× before) and 3.7× near it (53×
+/// before); 325 within 1e-4 of the window's value (300 before). Since
 /// the window is measured apart, the cuts at bands tangent inside a sphere's cone, the
 /// panels' Gaussian mass without `erf` differences, the panels following the chord ends'
 /// sweep and panels of at most 2.5 sd and 4.5 e-folds: 360 within the bound (346 before
@@ -61,8 +62,8 @@ const MIN_QUERIES: usize = 400;
 /// 1e-11 wholly beyond the window), 7.0e3 before the band circle kept `cos φ`; within 1e-4:
 /// 275, 266, 257, 207.
 const RATCHET: f64 = 1.0;
-const RATCHET_HORIZON: f64 = 9.5;
-const RATCHET_WITHIN: usize = 376;
+const RATCHET_HORIZON: f64 = 3.7;
+const RATCHET_WITHIN: usize = 380;
 
 /// The band rules compared: `LightParams::bands` and a name.
 const RULES: [(u32, &str); 4] = [

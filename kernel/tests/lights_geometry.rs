@@ -613,6 +613,80 @@ fn sphere_kinks_include_bands_tangent_inside_the_cone() {
     );
 }
 
+/// `SphereCap::kinks` holds where the cone's boundary meets the horizon, for cones of
+/// 1e-5 – 1 rad whose centre lies within ±α of the horizon: the two directions
+/// `w = (cos ψ, sin ψ, 0)` at `ψ = φ ± δ`, `cos δ = cos α / cos e` (`e` the axis's
+/// elevation, `φ` its azimuth), found here in f64 by bisection on the angle from the axis
+/// (no closed form shared with the kernel). Each `u · w` must be among the kinks within
+/// 1e-3 of the light's range in `u · w`, or 3e-7 (a few ulps of a value near 1). With
+/// `acos(cos α / cos e)` in f32 a 5e-4-rad sphere's crossings were 30 % of the light off,
+/// and this fails (`docs/stability.md` *Small spheres*).
+#[test]
+fn sphere_kinks_include_its_horizon_crossings() {
+    use scratchwave_kernel::lights::LightRegion;
+    use scratchwave_kernel::lights::band_circle::Breakpoints;
+    let mut next = uniform(0x7a3d_22c1_9e05_b1f3);
+    let (mut checked, mut worst) = (0usize, 0.0f64);
+    for _ in 0..2000 {
+        let alpha = 10f64.powf(-5.0 + 5.0 * next());
+        let (el, az) = (alpha * (2.0 * next() - 1.0), std::f64::consts::TAU * next());
+        let d = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
+        let dist = 1000.0;
+        let centre = d.map(|v| (dist * v) as f32);
+        let light = Light::sphere(centre, (dist * alpha.sin()) as f32, Cone::Asin);
+        let Some(region) = LightRegion::new(&light) else {
+            continue;
+        };
+        let u_az = std::f64::consts::TAU * next();
+        let u = glam::Vec3::new(u_az.cos() as f32, u_az.sin() as f32, 0.0);
+        let mut kinks = Breakpoints::empty();
+        region.kinks(u, &mut kinks);
+        let known: Vec<f64> = kinks.s[..kinks.len].iter().map(|&k| f64::from(k)).collect();
+        let (lo, hi) = region.dot_range(u);
+        let tol = (1.0e-3 * f64::from(hi - lo)).max(3.0e-7);
+        // The kernel's cone: its f32 axis (normalised here) and half-angle.
+        let axis = normalise(f64s(region.sphere.axis));
+        let alpha = f64::from(region.sphere.alpha);
+        let phi = axis[1].atan2(axis[0]);
+        let angle = |psi: f64| {
+            let w = [psi.cos(), psi.sin(), 0.0];
+            dot(cross(w, axis), cross(w, axis))
+                .sqrt()
+                .atan2(dot(w, axis))
+        };
+        if angle(phi) >= alpha {
+            continue;
+        }
+        for side in [1.0, -1.0] {
+            // From the azimuth nearest the axis (inside) to a quarter turn away (outside).
+            let (mut a, mut b) = (0.0f64, std::f64::consts::FRAC_PI_2);
+            for _ in 0..200 {
+                let m = 0.5 * (a + b);
+                if angle(phi + side * m) < alpha {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            let psi = phi + side * 0.5 * (a + b);
+            let value = dot(f64s(u), [psi.cos(), psi.sin(), 0.0]);
+            let miss = known
+                .iter()
+                .map(|k| (k - value).abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                miss <= tol,
+                "cone {centre:?}, α {alpha:e}: the horizon crossing at u·w = {value} is {miss:e} \
+                 from the nearest kink of {known:?} (tolerance {tol:e})"
+            );
+            checked += 1;
+            worst = worst.max(miss / tol);
+        }
+    }
+    println!("{checked} horizon crossings among the kinks, worst {worst:.2} of the tolerance");
+    assert!(checked > 2000, "only {checked} crossings");
+}
+
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],

@@ -191,13 +191,23 @@ impl SphereCap {
                 out.push(t.m_t + t.near);
             }
         }
+        // The boundary meets the horizon at azimuths `φ ± δ` from the axis's own, `cos δ =
+        // cos α / cos e` (`e` the axis's elevation), with `1 − cos δ = (cos e − cos α)/cos e =
+        // 2 sin((α+e)/2) sin((α−e)/2)/cos e`: `acos(cos α / cos e)` kept only the rounding of
+        // two numbers within ~1e-7 of 1 for a cone below ~1e-3 rad at the horizon (δ 30 %
+        // off, the lit range's kinks 4e-5 off in `u · w` for a 5e-4-rad sphere).
         let r = math::sqrt(self.axis.x * self.axis.x + self.axis.y * self.axis.y);
-        let c = math::cos(self.alpha) / r;
-        if !(self.alpha < math::PI && r > 0.0 && math::abs(c) <= 1.0) {
+        if !(self.alpha < math::PI && r > 0.0) {
+            return;
+        }
+        let e = math::atan2(math::abs(self.axis.z), r);
+        let one_minus = 2.0 * math::sin(0.5 * (self.alpha + e)) * math::sin(0.5 * (self.alpha - e))
+            / math::cos(e);
+        if !(one_minus >= 0.0) || one_minus > 2.0 {
             return;
         }
         let phi = math::atan2(self.axis.y, self.axis.x);
-        let delta = math::acos(c);
+        let delta = 2.0 * math::asin(math::sqrt(0.5 * one_minus));
         let mut k = 0;
         while k < 2 {
             let (sin_p, cos_p) = math::sin_cos(if k == 0 { phi + delta } else { phi - delta });
