@@ -3,8 +3,9 @@
 //! cases of Velinov §3.4.1–3.4.2 (grazing, partly/fully below the horizon, a band through a
 //! vertex: "a crossing on two arcs") and degenerate lights.
 
+use scratchwave_kernel::lights::band_circle::Breakpoints;
 use scratchwave_kernel::lights::{
-    BandRule, Cone, Light, LightParams, LightQuery, SiMode, light_integral,
+    BandRule, Cone, Light, LightParams, LightQuery, LightRegion, SiMode, light_integral,
 };
 use scratchwave_kernel::material::Material;
 use scratchwave_kernel::scratch::{Scratch, ScratchSlice};
@@ -548,8 +549,6 @@ fn polygon_kinks_include_bands_tangent_to_an_edge() {
 /// range's ends (`docs/stability.md` *Bands tangent to a sphere's cone*).
 #[test]
 fn sphere_kinks_include_bands_tangent_inside_the_cone() {
-    use scratchwave_kernel::lights::LightRegion;
-    use scratchwave_kernel::lights::band_circle::Breakpoints;
     let mut next = uniform(0x51e3_c0a7);
     let (mut checked, mut inside, mut worst) = (0usize, 0usize, 0.0f64);
     for _ in 0..2000 {
@@ -558,17 +557,10 @@ fn sphere_kinks_include_bands_tangent_inside_the_cone() {
         let (el, az) = (-0.4 + next(), std::f64::consts::TAU * next());
         let d = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
         let alpha = 0.1 + 1.4 * next();
-        let dist = 5.0;
-        let centre = d.map(|v| (dist * v) as f32);
-        let radius = (dist * alpha.sin()) as f32;
-        let light = Light::sphere(centre, radius, Cone::Asin);
-        let Some(region) = LightRegion::new(&light) else {
+        let Some((region, centre, radius, u, kinks)) = cone_seen_along(d, alpha, 5.0, &mut next)
+        else {
             continue;
         };
-        let u_az = std::f64::consts::TAU * next();
-        let u = glam::Vec3::new(u_az.cos() as f32, u_az.sin() as f32, 0.0);
-        let mut kinks = Breakpoints::empty();
-        region.kinks(u, &mut kinks);
         let (lo, hi) = region.dot_range(u);
         let mut known: Vec<f32> = kinks.s[..kinks.len].to_vec();
         known.extend([lo, hi]);
@@ -623,24 +615,16 @@ fn sphere_kinks_include_bands_tangent_inside_the_cone() {
 /// and this fails (`docs/stability.md` *Small spheres*).
 #[test]
 fn sphere_kinks_include_its_horizon_crossings() {
-    use scratchwave_kernel::lights::LightRegion;
-    use scratchwave_kernel::lights::band_circle::Breakpoints;
     let mut next = uniform(0x7a3d_22c1_9e05_b1f3);
     let (mut checked, mut worst) = (0usize, 0.0f64);
     for _ in 0..2000 {
         let alpha = 10f64.powf(-5.0 + 5.0 * next());
         let (el, az) = (alpha * (2.0 * next() - 1.0), std::f64::consts::TAU * next());
         let d = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
-        let dist = 1000.0;
-        let centre = d.map(|v| (dist * v) as f32);
-        let light = Light::sphere(centre, (dist * alpha.sin()) as f32, Cone::Asin);
-        let Some(region) = LightRegion::new(&light) else {
+        let Some((region, centre, _, u, kinks)) = cone_seen_along(d, alpha, 1000.0, &mut next)
+        else {
             continue;
         };
-        let u_az = std::f64::consts::TAU * next();
-        let u = glam::Vec3::new(u_az.cos() as f32, u_az.sin() as f32, 0.0);
-        let mut kinks = Breakpoints::empty();
-        region.kinks(u, &mut kinks);
         let known: Vec<f64> = kinks.s[..kinks.len].iter().map(|&k| f64::from(k)).collect();
         let (lo, hi) = region.dot_range(u);
         let tol = (1.0e-3 * f64::from(hi - lo)).max(3.0e-7);
@@ -685,6 +669,26 @@ fn sphere_kinks_include_its_horizon_crossings() {
     }
     println!("{checked} horizon crossings among the kinks, worst {worst:.2} of the tolerance");
     assert!(checked > 2000, "only {checked} crossings");
+}
+
+/// The sphere light of half-angle `alpha` at `dist` in the unit direction `d`, its region
+/// (`None` if below the horizon or degenerate), centre and radius, and a horizontal `u`
+/// drawn from `next` with the region's kinks along it.
+fn cone_seen_along(
+    d: [f64; 3],
+    alpha: f64,
+    dist: f64,
+    next: &mut impl FnMut() -> f64,
+) -> Option<(LightRegion, [f32; 3], f32, glam::Vec3, Breakpoints)> {
+    let centre = d.map(|v| (dist * v) as f32);
+    let radius = (dist * alpha.sin()) as f32;
+    let region =
+        scratchwave_kernel::lights::LightRegion::new(&Light::sphere(centre, radius, Cone::Asin))?;
+    let u_az = std::f64::consts::TAU * next();
+    let u = glam::Vec3::new(u_az.cos() as f32, u_az.sin() as f32, 0.0);
+    let mut kinks = Breakpoints::empty();
+    region.kinks(u, &mut kinks);
+    Some((region, centre, radius, u, kinks))
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
