@@ -22,6 +22,14 @@ horizon).
   python3 docs/light_stability_map.py --dir DIR [--dir ..] # adds LIGHT_SWEEP_DIR samples
   python3 docs/light_stability_map.py --dump FILE [...]    # from LIGHT_SWEEP_DUMP files
 
+With --extent, the same maps for the renderer's default rule, the extent rule (bands = 20:
+the Gaussian across the band integrated over the light's own range), against the exact
+integral over its own 4.5-sigma window (reference/light_extent_sweep.py,
+reference/golden/sweep/light_extent.csv, kernel/tests/light_extent_sweep.rs) and
+max(1e-4, 8 kappa), kappa where light_extent_kappa.csv has it (else 0), as
+docs/light-extent-stability.svg (--dir adds LIGHT_EXTENT_SWEEP_DIR samples, --dump reads
+LIGHT_EXTENT_SWEEP_DUMP files).
+
 Python standard library only; the colours and drawing conventions are
 docs/ghs_stability_map.py's.
 """
@@ -35,7 +43,25 @@ sys.path.insert(0, HERE)
 from ghs_stability_map import (bound_bar, cell, heat_cells, log_axes, read_dump, run_sweep_test,  # noqa: E402
                                svg_close, svg_open, worst_of)
 
-SVG = os.path.join(HERE, "light-stability.svg")
+# What each mode runs and draws: the sweep test, its dump and sample variables, the chart,
+# its title, and the (error column, bound column, label) of each panel column.
+MODES = {
+    "single": dict(
+        test="light_domain_sweep", dump_env="LIGHT_SWEEP_DUMP", dir_env="LIGHT_SWEEP_DIR",
+        svg=os.path.join(HERE, "light-stability.svg"), flag="",
+        title="Area lights (Velinov Eq. 27, exact Si) vs mpmath at the same f32 inputs: worst err / bound per cell",
+        bound_text="bound = max(1e-4, K·κ): left the light family&apos;s 16·max(κ, κs) (asserted), right the inputs&apos; 8κ",
+        # dumps written before `err_inputs` existed use `err`
+        bounds=[("err", "bound", "16·max(κ, κs)"), ("err_inputs", "bound_inputs", "8κ")],
+        source="(committed subset and found queries)"),
+    "extent": dict(
+        test="light_extent_sweep", dump_env="LIGHT_EXTENT_SWEEP_DUMP", dir_env="LIGHT_EXTENT_SWEEP_DIR",
+        svg=os.path.join(HERE, "light-extent-stability.svg"), flag=" --extent",
+        title="Extent rule (bands 20, exact Si) vs mpmath over its 4.5-σ window, same f32 inputs: worst err / bound per cell",
+        bound_text="bound = max(1e-4, 8κ), κ the window value&apos;s one-ulp conditioning where computed, else 0",
+        bounds=[("err", "bound", "8κ")],
+        source="(committed subset)"),
+}
 
 KINDS = [("0", "sphere, asin cone"), ("1", "sphere, atan cone"), ("2", "polygon")]
 # log10 axes: (lo, hi, cells)
@@ -44,8 +70,6 @@ MAPS = [
     ("distance", "α × distance", (-3.0, 7.0, 10), "distance (scene units)"),
     ("height", "α × height above the horizon", (-7.0, 0.5, 15), "elev − α (rad)"),
 ]
-# (error column, bound column, label); dumps written before `err_inputs` existed use `err`
-BOUNDS = [("err", "bound", "16·max(κ, κs)"), ("err_inputs", "bound_inputs", "8κ")]
 HEIGHT_FLOOR = 1e-7
 
 
@@ -59,36 +83,38 @@ def err(r, column):
     return float(r.get(column, r["err"]))
 
 
-def grid(rows):
+def grid(rows, bounds):
     """{(kind, map, bound, ix, iy): (max err/bound, count)} from dump rows."""
     g = {}
     for r in rows:
         ix = cell(math.log10(float(r["alpha"])), *AX)
         for key, _, ya, _ in MAPS:
             iy = cell(math.log10(y_value(r, key)), *ya)
-            for e, b, _ in BOUNDS:
+            for e, b, _ in bounds:
                 k = (r["kind"], key, b, ix, iy)
                 m, n = g.get(k, (0.0, 0))
                 g[k] = (max(m, err(r, e) / float(r[b])), n + 1)
     return g
 
 
-def draw(g, n_rows, source, path):
+def draw(g, n_rows, source, mode):
     cw, ch = 22, 14
     left, top, gapx, gapy = 70, 66, 100, 74
     pw = AX[2] * cw
+    bounds = mode["bounds"]
     panels = [(kind, klabel, m) for kind, klabel in KINDS for m in MAPS]
-    width = left + 2 * pw + gapx + 150
+    # as wide as the two-column chart at least, for the titles
+    width = max(left + len(bounds) * pw + (len(bounds) - 1) * gapx + 150, left + 2 * pw + gapx + 150)
     height = top + sum(m[2][2] * ch + gapy for _, _, m in panels) + 30
     out = svg_open(width, height) + [
-           '<text x="%d" y="18" font-size="13">Area lights (Velinov Eq. 27, exact Si) vs mpmath at the same f32 inputs: worst err / bound per cell</text>' % left,
-           '<text x="%d" y="34" fill="#555">python3 docs/light_stability_map.py %s</text>' % (left, source),
-           '<text x="%d" y="50" fill="#555">%d queries; bound = max(1e-4, K·κ): left the light family&apos;s 16·max(κ, κs) (asserted), right the inputs&apos; 8κ</text>' % (left, n_rows)]
+           '<text x="%d" y="18" font-size="13">%s</text>' % (left, mode["title"]),
+           '<text x="%d" y="34" fill="#555">python3 docs/light_stability_map.py%s %s</text>' % (left, mode["flag"], source),
+           '<text x="%d" y="50" fill="#555">%d queries; %s</text>' % (left, n_rows, mode["bound_text"])]
     y0 = top
     for kind, klabel, (key, mlabel, ya, yl) in panels:
         y0 += 14
         ph = ya[2] * ch
-        for col, (_, b, blabel) in enumerate(BOUNDS):
+        for col, (_, b, blabel) in enumerate(bounds):
             x0 = left + col * (pw + gapx)
             vals = [v[0] for k, v in g.items() if k[:3] == (kind, key, b)]
             status = "worst %.3g" % max(vals) if vals else "no query"
@@ -97,34 +123,37 @@ def draw(g, n_rows, source, path):
             out += log_axes(x0, y0, pw, ph, AX, ya, "angular radius α (rad)", yl, 48,
                             lambda e: "≤1e%d" % e if key == "height" and e == ya[0] else "1e%d" % e)
         y0 += ph + gapy - 14
-    out += bound_bar(left + 2 * pw + gapx + 30, top + 14, 2 * AX[2] * ch)
-    svg_close(out, path, left, height, "grey: no query in the cell; bottom row of the height maps: the light reaches the horizon or below")
+    out += bound_bar(left + len(bounds) * pw + (len(bounds) - 1) * gapx + 30, top + 14, 2 * AX[2] * ch)
+    svg_close(out, mode["svg"], left, height, "grey: no query in the cell; bottom row of the height maps: the light reaches the horizon or below")
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--dir", action="append", default=[], help="a LIGHT_SWEEP_DIR sample to add (repeatable)")
-    ap.add_argument("--dump", action="append", default=[], help="LIGHT_SWEEP_DUMP files to draw instead of running cargo")
+    ap.add_argument("--extent", action="store_true", help="the extent rule (bands = 20) instead of Eq. 27")
+    ap.add_argument("--dir", action="append", default=[], help="a sweep sample directory to add (repeatable)")
+    ap.add_argument("--dump", action="append", default=[], help="dump files to draw instead of running cargo")
     a = ap.parse_args()
+    mode = MODES["extent" if a.extent else "single"]
     if a.dump:
         rows = [r for path in a.dump for r in read_dump(path)]
         source = "(from dumps)"
     else:
-        rows = run_sweep_test("light_domain_sweep", "LIGHT_SWEEP_DUMP")
+        rows = run_sweep_test(mode["test"], mode["dump_env"])
         for d in a.dir:
-            os.environ["LIGHT_SWEEP_DIR"] = d
-            rows += run_sweep_test("light_domain_sweep", "LIGHT_SWEEP_DUMP")
-        os.environ.pop("LIGHT_SWEEP_DIR", None)
-        source = "(committed subset and found queries)" if not a.dir else "(committed subset and found queries + %d --dir sample%s)" % (len(a.dir), "s" * (len(a.dir) > 1))
-    g = grid(rows)
-    draw(g, len(rows), source, SVG)
+            os.environ[mode["dir_env"]] = d
+            rows += run_sweep_test(mode["test"], mode["dump_env"])
+        os.environ.pop(mode["dir_env"], None)
+        source = mode["source"] if not a.dir else "%s + %d --dir sample%s)" % (mode["source"][:-1], len(a.dir), "s" * (len(a.dir) > 1))
+    bounds = mode["bounds"]
+    g = grid(rows, bounds)
+    draw(g, len(rows), source, mode)
     for kind, klabel in KINDS:
-        for e, b, blabel in BOUNDS:
+        for e, b, blabel in bounds:
             vals = [v for k, v in g.items() if k[0] == kind and k[1] == MAPS[0][0] and k[2] == b]
             worst = max((v[0] for v in vals), default=0.0)
             over = sum(1 for r in rows if r["kind"] == kind and err(r, e) > float(r[b]))
             print("%s, against %s: worst err/bound %.3g, %d queries over" % (klabel, blabel, worst, over))
-    print("wrote", SVG)
+    print("wrote", mode["svg"])
 
 
 if __name__ == "__main__":

@@ -43,8 +43,8 @@ use scratchwave_kernel::scratch::ScratchSlice;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use sweep_common::{
-    K, K_LIGHT, Row, Stat, Table, bound_with, check_size, light_err, light_group, light_query,
-    light_reach, light_tables, rel, report,
+    K, K_LIGHT, Row, Stat, Table, bound_with, check_size, light_distance, light_err, light_group,
+    light_query, light_reach, light_tables, rel, report,
 };
 
 /// The committed subset's size (the test refuses fewer).
@@ -55,24 +55,6 @@ const MIN_QUERIES: usize = 1500;
 /// and a plane's two crossings the difference of their roots; 14 since the band circle
 /// keeps `cos φ`, 225 before) and the found near miss (an exact 0 there).
 const RATCHET_OVER_8K: usize = 7;
-
-/// The light's distance from the origin in the units the row is written in: the sphere's
-/// centre, or the mean of the polygon's vertices.
-fn distance(r: &Row) -> f64 {
-    let c = if r.u("kind") == 0 {
-        [r.d("l_x"), r.d("l_y"), r.d("l_z")]
-    } else {
-        let n = r.u("count");
-        let mut c = [0.0; 3];
-        for i in 0..n {
-            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                c[k] += r.d(&format!("v{i}_{axis}")) / f64::from(n);
-            }
-        }
-        c
-    };
-    c.iter().map(|v| v * v).sum::<f64>().sqrt()
-}
 
 /// The kernel's value of one row.
 fn kernel_value(r: &Row) -> f32 {
@@ -123,7 +105,7 @@ fn light_integral_is_within_its_bound_over_the_domain() {
             "{ki},{:e},{:e},{:e},{err:e},{:e},{plain:e},{:e}",
             r.d("alpha"),
             r.d("elev"),
-            distance(&r),
+            light_distance(&r),
             bound_with(K_LIGHT, kappa.max(kappa_s)),
             bound_with(K, kappa)
         )

@@ -28,15 +28,19 @@
 //!
 //! The committed subset (`reference/golden/sweep/light_extent.csv`) runs by default; a larger
 //! sample (`python3 reference/light_extent_sweep.py --count N --seed-offset K --out DIR`)
-//! with `LIGHT_EXTENT_SWEEP_DIR=DIR`.
+//! with `LIGHT_EXTENT_SWEEP_DIR=DIR`. `LIGHT_EXTENT_SWEEP_DUMP=FILE` writes the extent rule's
+//! lit queries (kind, angular radius, elevation, distance, error against the window and
+//! bound) for the stability map (`docs/light_stability_map.py --extent`).
 
 mod sweep_common;
 
 use scratchwave_kernel::lights::light_integral;
 use scratchwave_kernel::scratch::ScratchSlice;
 use std::collections::BTreeMap;
+use std::fmt::Write as _;
 use sweep_common::{
-    FLOOR, Row, Stat, TINY, Table, bound, check_size, light_group, light_query, rel, report,
+    FLOOR, Row, Stat, TINY, Table, bound, check_size, light_distance, light_group, light_query,
+    rel, report,
 };
 
 /// The committed subset's size (the test refuses fewer).
@@ -148,6 +152,8 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
     // whose κ has not been computed.
     let (mut within_whole, mut shares) = (0usize, Vec::new());
     let mut no_kappa = Vec::new();
+    // The extent rule's lit queries for the stability map (`LIGHT_EXTENT_SWEEP_DUMP`).
+    let mut dump = String::from("kind,alpha,elev,distance,err,bound\n");
     for (index, r) in table.rows().enumerate() {
         let g = light_group(&r, &mut names);
         let (whole, window) = (r.d("ref"), r.d("window"));
@@ -196,6 +202,16 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
                 Cause::Other
             };
             let ratio = err / bound(kappa);
+            writeln!(
+                dump,
+                "{},{:e},{:e},{:e},{err:e},{:e}",
+                g.0.0,
+                r.d("alpha"),
+                r.d("elev"),
+                light_distance(&r),
+                bound(kappa)
+            )
+            .unwrap();
             causes.entry(cause).or_default().add(err, ratio, text);
             let limit = match cause {
                 Cause::Horizon => RATCHET_HORIZON,
@@ -253,6 +269,9 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
             no_kappa.len(),
             rows.join(",")
         );
+    }
+    if let Ok(path) = std::env::var("LIGHT_EXTENT_SWEEP_DUMP") {
+        std::fs::write(&path, dump).unwrap();
     }
     if within_bound < RATCHET_WITHIN {
         bad.push(format!(

@@ -459,6 +459,24 @@ const LIGHT_SIZES: [(f64, &str); 4] = [
 /// A light whose nearest point is within this of the horizon (rad) counts as near it.
 const NEAR_HORIZON: f64 = 0.01;
 
+/// The light's distance from the origin in the units the row is written in: the sphere's
+/// centre, or the mean of the polygon's vertices (the stability maps' axis).
+pub fn light_distance(r: &Row) -> f64 {
+    let c = if r.u("kind") == 0 {
+        [r.d("l_x"), r.d("l_y"), r.d("l_z")]
+    } else {
+        let n = r.u("count");
+        let mut c = [0.0; 3];
+        for i in 0..n {
+            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                c[k] += r.d(&format!("v{i}_{axis}")) / f64::from(n);
+            }
+        }
+        c
+    };
+    c.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
 /// A light-sweep row's report group `((kind, size), name)`: the light's kind (sphere with
 /// the `asin` or `atan` cone, polygon) and its angular radius, and apart from those the
 /// lights that reach within [`NEAR_HORIZON`] of the horizon (names end in "near the
