@@ -58,7 +58,16 @@ partly below); sigma 1-100 um, lambda 360-830 nm, W 0.1-50 um, D 1 nm - 10 um (l
 |x| 1 - 1e4 um; finite and infinite eta; small-angle and exact depth term; wo with
 cos(theta) 0.005 - 1 (`sweep_io.draw_wo`).
 
-Usage: python3 reference/light_sweep.py [--count N] [--seed-offset K] [--out DIR] [--jobs N] [--check]
+`--vgroove` draws the same queries (same seed, same sequence) with every scratch a V
+groove (profile 1) and writes DIR/light_vgroove.csv (the committed subset: 1 500 queries,
+~10 min with --jobs 2 on a 2-core machine, the quadrature across each chord included): there the
+kernel integrates |M - P|^2 across each lit chord by quadrature (`across_integral`), so
+L_k is sum_lit int_{q0}^{q1} |M - P|^2 dq with the depth inside it (D2_k = 1), evaluated by
+`vgroove_band_sweep.band_integral` (16-point Gauss-Legendre on quarter-lobe pieces) at the
+depth phase 2 gamma / lambda of the same gamma; kappa and kappa_s as above (a depth
+nudge now changes L_k).
+
+Usage: python3 reference/light_sweep.py [--vgroove] [--count N] [--seed-offset K] [--out DIR] [--jobs N] [--check]
 Writes DIR/light.csv (default reference/golden/sweep/). The queries are drawn in order and
 kept in order, so `--jobs N` (N worker processes) writes the same file as one process.
 `--found [--out DIR]` writes DIR/light_found.csv instead: the queries larger samples found
@@ -73,6 +82,7 @@ import numpy as np
 
 from parallel import ordered_map
 from scratch_sweep import s32, unit_tangent
+import vgroove_band_sweep
 from sweep_io import draw_wo, f32, nudges, parse_args, progress, write_csv
 
 mp.mp.dps = 40
@@ -211,6 +221,31 @@ def band_sum(s, wo, reg, lam_um):
     return lit_sum(Band(s, wo), reg[0], mp.mpf(s["w"]), lam_um)
 
 
+def vgroove_sum(q, s, wo, reg, lam_um):
+    """The V groove's L_k (`--vgroove`): sum_lit int_{q0}^{q1} |M - P|^2 dq, the depth
+    inside (D2_k = 1), with `vgroove_band_sweep.band_integral` (16-point Gauss-Legendre on
+    quarter-lobe pieces, at the working precision) at the depth phase 2 gamma / lambda
+    (half-turns per um of depth) of `gamma`."""
+    if reg is None:
+        return mp.mpf(0)
+    band = Band(s, wo)
+    ht = 2 * gamma(q, reg, wo) / lam_um
+    total = mp.mpf(0)
+    for a, b in band.lit(reg[0]):
+        q0 = (band.rho * mp.sin(a) + band.wo_b) / lam_um
+        q1 = (band.rho * mp.sin(b) + band.wo_b) / lam_um
+        total += vgroove_band_sweep.band_integral(s["w"], s["d"], ht, q0, q1 - q0)
+    return total
+
+
+def chord_sum(q, s, wo, reg, lam_um):
+    """L_k of scratch s: the rectangular groove's `band_sum` or the V groove's `vgroove_sum`
+    (`q["profile"]`)."""
+    if q.get("profile", 0) == 1:
+        return vgroove_sum(q, s, wo, reg, lam_um)
+    return band_sum(s, wo, reg, lam_um)
+
+
 def along(q, s):
     """P_k = int |eta|^2 dxi_1 (um)."""
     t = unit([s["tx"], s["ty"]])
@@ -232,16 +267,24 @@ def along(q, s):
     return across * mp.sqrt(mp.pi) * sig / 2 * diff
 
 
-def depth2(q, s, reg, wo):
+def gamma(q, reg, wo):
+    """The depth term's gamma: 2 (small angle) or wc.z + wo.z (exact); 0 without a light."""
     if q["depth_term"] == 0:
-        gamma = mp.mpf(2)
-    else:
-        if reg is None:
-            return mp.mpf(0)
-        c = reg[1]
-        wc = unit([c[0], c[1], max(c[2], mp.mpf(F32_1E3))])
-        gamma = wc[2] + wo[2]
-    kappa = mp.mpf(s["d"]) * 2000 * gamma / mp.mpf(q["lambda_nm"])
+        return mp.mpf(2)
+    if reg is None:
+        return mp.mpf(0)
+    c = reg[1]
+    wc = unit([c[0], c[1], max(c[2], mp.mpf(F32_1E3))])
+    return wc[2] + wo[2]
+
+
+def depth2(q, s, reg, wo):
+    """D2_k of a rectangular groove; 1 for a V groove, whose depth is inside L_k."""
+    if q.get("profile", 0) == 1:
+        return mp.mpf(1)
+    if q["depth_term"] == 1 and reg is None:
+        return mp.mpf(0)
+    kappa = mp.mpf(s["d"]) * 2000 * gamma(q, reg, wo) / mp.mpf(q["lambda_nm"])
     return 4 * mp.sin(mp.pi * kappa / 2) ** 2
 
 
@@ -255,7 +298,7 @@ class Parts:
         self.lam = mp.mpf(q["lambda_nm"]) / 1000
         self.p = [along(q, s) for s in q["scratches"]]
         self.d2 = [depth2(q, s, self.reg, self.wo) for s in q["scratches"]]
-        self.l = [band_sum(s, self.wo, self.reg, self.lam) for s in q["scratches"]]
+        self.l = [chord_sum(q, s, self.wo, self.reg, self.lam) for s in q["scratches"]]
 
     def total(self):
         sig = mp.mpf(self.q["sigma"])
@@ -284,6 +327,8 @@ def band_parameter_conditioning(parts):
         return 0.0
     sig = mp.mpf(parts.q["sigma"])
     worst = mp.mpf(0)
+    vgroove = parts.q.get("profile", 0) == 1
+    ht = 2 * gamma(parts.q, parts.reg, parts.wo) / parts.lam
     for k, s in enumerate(parts.q["scratches"]):
         band = Band(s, parts.wo)
         w = mp.mpf(s["w"])
@@ -296,7 +341,10 @@ def band_parameter_conditioning(parts):
                     s2 = min(mp.mpf(1), max(mp.mpf(-1), se + d * ulp_s(se)))
                     qa = (band.rho * se + band.wo_b) / parts.lam
                     qb = (band.rho * s2 + band.wo_b) / parts.lam
-                    dl = sign * (antiderivative(w, qb) - antiderivative(w, qa))
+                    if vgroove:
+                        dl = sign * vgroove_band_sweep.band_integral(w, s["d"], ht, qa, qb - qa)
+                    else:
+                        dl = sign * (antiderivative(w, qb) - antiderivative(w, qa))
                     change = parts.p[k] * parts.d2[k] * dl / (mp.pi * sig * sig)
                     worst = max(worst, abs(change / ref))
     return float(worst)
@@ -339,8 +387,10 @@ def neighbours(q, ulps=1):
     for i in range(2):
         yield from each(lambda q, i=i: q["x"][i], lambda q, y, i=i: q["x"].__setitem__(i, y), "p")
     yield from each(lambda q: q["sigma"], lambda q, y: q.__setitem__("sigma", y), "p")
+    # A V groove's depth is inside its L_k.
+    depth_kind = "l" if q.get("profile", 0) == 1 else "d"
     for k in range(len(q["scratches"])):
-        for key, kind in (("cx", "p"), ("cy", "p"), ("h", "p"), ("tx", "pl"), ("ty", "pl"), ("w", "l"), ("d", "d")):
+        for key, kind in (("cx", "p"), ("cy", "p"), ("h", "p"), ("tx", "pl"), ("ty", "pl"), ("w", "l"), ("d", depth_kind)):
             if key == "h" and q["eta"] == 1:
                 continue
             yield from each(
@@ -375,7 +425,7 @@ def conditioning(q, base):
             for k in changed["p"]:
                 p2.p[k] = along(q2, q2["scratches"][k])
             for k in changed["l"]:
-                p2.l[k] = band_sum(q2["scratches"][k], p2.wo, p2.reg, p2.lam)
+                p2.l[k] = chord_sum(q2, q2["scratches"][k], p2.wo, p2.reg, p2.lam)
             for k in changed["d"]:
                 p2.d2[k] = depth2(q2, q2["scratches"][k], p2.reg, p2.wo)
             v = p2.total()
@@ -496,7 +546,7 @@ def row(q, ref, kappa, lit, kappa_s, reach):
     for i in range(MAX_S):
         if i < len(q["scratches"]):
             s = q["scratches"][i]
-            r += [s32(s[k]) for k in ("cx", "cy", "tx", "ty", "h", "w", "d")] + ["0"]
+            r += [s32(s[k]) for k in ("cx", "cy", "tx", "ty", "h", "w", "d")] + [str(q.get("profile", 0))]
         else:
             r += ["0"] * 8
     r += ["%.6g" % q["alpha"], "%.6g" % q["elev"], str(lit)]
@@ -522,6 +572,7 @@ def query_of(r):
         sigma=f(r["sigma"]),
         eta=int(r["eta"]),
         depth_term=int(r["depth_term"]),
+        profile=int(r["s0_profile"]),
         scratches=[
             {k: f(r["s%d_%s" % (i, k)]) for k in ("cx", "cy", "tx", "ty", "h", "w", "d")}
             for i in range(int(r["n"]))
@@ -606,12 +657,17 @@ def main():
         sys.argv.remove("--found")
         found(parse_args(0).out)
         return
+    vgroove = "--vgroove" in sys.argv
+    if vgroove:
+        sys.argv.remove("--vgroove")
     args = parse_args(1500, jobs=True)
     rng = np.random.default_rng(20_020 + args.seed_offset)
     rows, redrawn, t0 = [], 0, time.time()
     while len(rows) < args.count:
         # as many draws as rows still wanted: the ones a one-at-a-time loop would make next
         batch = [draw(rng) for _ in range(args.count - len(rows))]
+        for q in batch:
+            q["profile"] = 1 if vgroove else 0
         for r in ordered_map(evaluate, batch, args.jobs):
             if r is None:
                 redrawn += 1
@@ -620,7 +676,7 @@ def main():
             progress(len(rows), args.count, 100)
     print(f"{len(rows)} queries ({redrawn} redrawn: exact 0 beside a nonzero neighbour), "
           f"{time.time() - t0:.0f} s", file=sys.stderr)
-    write_csv(args.out, "light", header(), rows)
+    write_csv(args.out, "light_vgroove" if vgroove else "light", header(), rows)
 
 
 if __name__ == "__main__":

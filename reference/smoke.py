@@ -34,6 +34,7 @@ GENERATORS = {
     "footprint": (["footprint_sweep.py", "--count", "2"], SWEEP, ["footprint"], False),
     "light": (["light_sweep.py", "--count", "2"], SWEEP, ["light"], False),
     "light_found": (["light_sweep.py", "--found"], SWEEP, ["light_found"], True),
+    "light_vgroove": (["light_sweep.py", "--vgroove", "--count", "2"], SWEEP, ["light_vgroove"], False),
     "light_extent": (["light_extent_sweep.py", "--count", "2"], SWEEP, ["light_extent"], False),
     "vgroove_band": (["vgroove_band_sweep.py", "--count", "2"], SWEEP, ["vgroove_band"], False),
     "lobe1": (["lobe1_sweep.py", "--count", "2"], SWEEP, ["lobe1"], False),

@@ -17,9 +17,10 @@
 //!   sweep's constants (`K = 8` for the closed forms, 16 for the accurate average;
 //!   `kernel/tests/footprint_domain_sweep.rs`).
 //!
-//! * Area lights (`reference/golden/sweep/light.csv` and `light_found.csv`): Velinov Eq.
-//!   27's single band through a light batch (one query per batch), held to the light
-//!   sweep's bound `max(1e-4, 16·max(κ, κs))`, an exact 0 to its 16-ulp reach
+//! * Area lights (`reference/golden/sweep/light.csv` and `light_found.csv`, and the same
+//!   domain with V grooves, `light_vgroove.csv`, whose chords take the quadrature across the
+//!   band): Velinov Eq. 27's single band through a light batch (one query per batch), held
+//!   to the light sweep's bound `max(1e-4, 16·max(κ, κs))`, an exact 0 to its 16-ulp reach
 //!   (`kernel/tests/light_domain_sweep.rs`).
 //!
 //! Run with `--nocapture` for the per-backend tables.
@@ -35,7 +36,7 @@ use scratchwave_kernel::units::{UNIT_TOLERANCE, um_from_nm};
 use std::collections::BTreeMap;
 use sweep_common::{
     FLOOR, K, K_LIGHT, SCRATCH_FAMILIES, Stat, Table, footprint_inputs, ghs_params, light_err,
-    light_query, light_reach, light_tables, rel, report, scratch_query,
+    light_is_vgroove, light_query, light_reach, light_tables, rel, report, scratch_query,
 };
 
 /// One sweep query as a batch, with its exact value, κ and report group.
@@ -164,6 +165,7 @@ struct LightCase {
     exact: f64,
     kappa: f64,
     reach: f64,
+    group: &'static str,
     row: String,
 }
 
@@ -183,6 +185,11 @@ fn light_cases() -> Vec<LightCase> {
                 exact: r.d("ref"),
                 kappa: r.d("kappa").max(r.d("kappa_s")),
                 reach: light_reach(&r),
+                group: if light_is_vgroove(&r) {
+                    "area light, Eq. 27, V grooves"
+                } else {
+                    "area light, Eq. 27"
+                },
                 row: format!("light: {}", r.text()),
             }
         })
@@ -250,12 +257,12 @@ fn every_backend_within_the_conditioning_bound() {
             let got = b
                 .evaluate_light(&c.batch)
                 .unwrap_or_else(|e| panic!("{}: {e}", c.row))[0];
-            stats
-                .entry((3, "area light, Eq. 27"))
-                .or_default()
-                .add_with(K_LIGHT, light_err(got, c.exact, c.reach), c.kappa, || {
-                    format!("{} ({} {got:e})", c.row, b.name())
-                });
+            stats.entry((3, c.group)).or_default().add_with(
+                K_LIGHT,
+                light_err(got, c.exact, c.reach),
+                c.kappa,
+                || format!("{} ({} {got:e})", c.row, b.name()),
+            );
         }
         println!(
             "\n{} ({:.1} s, one batch per query):",

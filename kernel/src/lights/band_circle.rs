@@ -47,10 +47,52 @@ pub struct BandCircle {
     /// (~6e-8 near `|c| = 1/2`) keeps its shape across the bands only if each band is placed
     /// by its exact `offset` from this one ([`super::sphere::SphereCap::crossings`]).
     pub rho0: f32,
+    /// `ρ₀²` as formed, `(wo_xy · b)² + wo_z²`.
+    pub rho0_sq: f32,
     /// Radius `√(1 − c²)`.
     pub rho: f32,
     /// `wo_xy · b`.
     pub wo_b: f32,
+}
+
+/// The parallel bands of one scratch for one view, by their offset `o = (wi + wo)_xy · t`
+/// ([`BandCircle::new_offset`]): each the circle `c = o − wo·t`, `ρ² = ρ₀² + o(2 wo·t − o)`.
+#[derive(Clone, Copy, Debug)]
+pub struct BandFamily {
+    /// `t₃ = (t, 0)`.
+    pub t3: Vec3,
+    /// `b₃ = (b, 0)`.
+    pub b3: Vec3,
+    /// `wo_xy · t` (`c₀ = −wo·t`).
+    pub wo_t: f32,
+    /// `wo_xy · b`.
+    pub wo_b: f32,
+    /// `ρ₀² = (wo_xy · b)² + wo_z²`, the centre line's `1 − c₀²` without cancellation.
+    pub rho0_sq: f32,
+}
+
+impl BandFamily {
+    /// Whether the bands are small circles about `±t₃` (`|c₀| > ρ₀`): an ulp of `c` then
+    /// moves a band across itself by more than `ε`, and a small light places them by their
+    /// radius ([`super::polygon::SphericalPolygon::crossings`]).
+    #[inline]
+    pub fn narrow(&self) -> bool {
+        self.wo_t * self.wo_t > self.rho0_sq
+    }
+
+    /// The bands of a scratch with unit tangent `t` and bitangent `b` for the view `wo`.
+    #[inline]
+    pub fn new(tangent: Vec2, bitangent: Vec2, wo: Vec3) -> BandFamily {
+        let wo_xy = Vec2::new(wo.x, wo.y);
+        let wo_b = wo_xy.dot(bitangent);
+        BandFamily {
+            t3: Vec3::new(tangent.x, tangent.y, 0.0),
+            b3: Vec3::new(bitangent.x, bitangent.y, 0.0),
+            wo_t: wo_xy.dot(tangent),
+            wo_b,
+            rho0_sq: wo_b * wo_b + wo.z * wo.z,
+        }
+    }
 }
 
 impl BandCircle {
@@ -64,8 +106,8 @@ impl BandCircle {
     /// The parallel line `(wi + wo)_xy · t = offset` (direction cosines, i.e. ξ₁ = offset/λ).
     #[inline]
     pub fn new_offset(tangent: Vec2, bitangent: Vec2, wo: Vec3, offset: f32) -> Option<BandCircle> {
-        let wo_xy = Vec2::new(wo.x, wo.y);
-        let (wo_t, wo_b) = (wo_xy.dot(tangent), wo_xy.dot(bitangent));
+        let family = BandFamily::new(tangent, bitangent, wo);
+        let (wo_t, rho0_sq) = (family.wo_t, family.rho0_sq);
         let c = offset - wo_t;
         if !(c > -1.0 && c < 1.0) {
             return None;
@@ -74,21 +116,33 @@ impl BandCircle {
         // view along the scratch (c → ±1) the plain `1 − c²` keeps only the absolute
         // accuracy ~ε of c², which put 1e-5 rad into the crossings of a band circle of
         // radius 0.018 (`reference/light_sweep.py`).
-        let rho0_sq = wo_b * wo_b + wo.z * wo.z;
         let rho = math::sqrt0(rho0_sq + offset * (2.0 * wo_t - offset));
         if !(rho > 0.0) {
             return None;
         }
         Some(BandCircle {
-            t3: Vec3::new(tangent.x, tangent.y, 0.0),
-            b3: Vec3::new(bitangent.x, bitangent.y, 0.0),
+            t3: family.t3,
+            b3: family.b3,
             c,
             offset,
             c0: -wo_t,
             rho0: math::sqrt0(rho0_sq),
+            rho0_sq,
             rho,
-            wo_b,
+            wo_b: family.wo_b,
         })
+    }
+
+    /// The family the band belongs to ([`BandFamily`]).
+    #[inline]
+    pub fn family(&self) -> BandFamily {
+        BandFamily {
+            t3: self.t3,
+            b3: self.b3,
+            wo_t: -self.c0,
+            wo_b: self.wo_b,
+            rho0_sq: self.rho0_sq,
+        }
     }
 
     /// The direction at the point `p` of the upper half.
@@ -119,7 +173,13 @@ impl BandCircle {
     /// Adds to `out` the (up to two) upper-half points where the circle meets the plane
     /// `wi · m = h`. `slack = R − g ≥ 0` may be passed when the caller can form it without
     /// cancellation (the sphere does); otherwise pass `None`.
-    pub fn plane_crossings(&self, m: Vec3, h: f32, slack: Option<f32>, out: &mut ArcPoints) {
+    pub fn plane_crossings<const N: usize>(
+        &self,
+        m: Vec3,
+        h: f32,
+        slack: Option<f32>,
+        out: &mut ArcPoints<N>,
+    ) {
         let (mt, mb, mz) = self.components(m);
         let r2 = mb * mb + mz * mz;
         if !(r2 > 1.0e-24) {
@@ -155,10 +215,7 @@ impl BandCircle {
                 s
             };
             if super::horizon::on_upper_half(z) {
-                pair[k] = ArcPoint {
-                    s: math::clamp(s, -1.0, 1.0),
-                    z: math::min(z, 1.0),
-                };
+                pair[k] = ArcPoint::on_circle(s, z);
                 out.push(pair[k]);
                 upper += 1;
             }
@@ -206,20 +263,51 @@ impl Breakpoints {
     }
 }
 
-/// A point of a band circle's upper half: `s = sin φ`, `z = cos φ ≥ 0`.
+/// A point of a band circle's upper half: `s = sin φ`, `z = cos φ ≥ 0`, and where a small
+/// polygon's crossing formed it, `s` relative to the polygon's reference direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ArcPoint {
     /// `sin φ`, the coordinate `ξ₂` is linear in.
     pub s: f32,
     /// `cos φ`, the height above the horizon (relative to the circle's radius).
     pub z: f32,
+    /// `s − r̂·b₃/ρ = (w − r̂)·b₃/ρ`, `r̂` a small polygon's reference direction, formed
+    /// from the polygon's local offsets ([`super::polygon::SphericalPolygon`]); `+∞` where
+    /// not formed. Two such points give their chord to the relative accuracy of the
+    /// offsets, where `s₁ − s₀` keeps only an ulp of `|s|`.
+    pub local: f32,
+    /// `(w − r̂)_z/ρ` beside [`ArcPoint::local`] (`+∞` where not formed): with it and the
+    /// band's height over `r̂`, a point between two crossings is placed relative to the
+    /// polygon as finely as the crossings themselves.
+    pub local_z: f32,
 }
 
 impl ArcPoint {
     /// The horizon end `φ = −π/2`.
-    pub const START: ArcPoint = ArcPoint { s: -1.0, z: 0.0 };
+    pub const START: ArcPoint = ArcPoint {
+        s: -1.0,
+        z: 0.0,
+        local: f32::INFINITY,
+        local_z: f32::INFINITY,
+    };
     /// The horizon end `φ = π/2`.
-    pub const END: ArcPoint = ArcPoint { s: 1.0, z: 0.0 };
+    pub const END: ArcPoint = ArcPoint {
+        s: 1.0,
+        z: 0.0,
+        local: f32::INFINITY,
+        local_z: f32::INFINITY,
+    };
+
+    /// The point `(s, z)` (clamped to the circle's range), without a local coordinate.
+    #[inline]
+    pub fn on_circle(s: f32, z: f32) -> ArcPoint {
+        ArcPoint {
+            s: math::clamp(s, -1.0, 1.0),
+            z: math::min(z, 1.0),
+            local: f32::INFINITY,
+            local_z: f32::INFINITY,
+        }
+    }
 
     /// Whether `self` comes before `other` along the half circle (`φ` increasing): by `s`,
     /// and where two `s` round to the same value, by `z` (falling towards `s = 1`, rising
@@ -254,12 +342,9 @@ impl ArcPoint {
         let (s, z) = (self.s + other.s, self.z + other.z);
         let len = math::sqrt(s * s + z * z);
         if len > 0.0 {
-            ArcPoint {
-                s: s / len,
-                z: z / len,
-            }
+            ArcPoint::on_circle(s / len, z / len)
         } else {
-            ArcPoint { s: 0.0, z: 1.0 }
+            ArcPoint::on_circle(0.0, 1.0)
         }
     }
 }
@@ -272,9 +357,9 @@ impl ArcPoint {
 /// carries that error into a chord far shorter than `|s|` (a small sphere light), while
 /// the difference of the crossing formula's two roots is formed without it.
 #[derive(Clone, Copy, Debug)]
-pub struct ArcPoints {
+pub struct ArcPoints<const N: usize = MAX_BREAKPOINTS> {
     /// Points; only the first `len` are meaningful.
-    pub p: [ArcPoint; MAX_BREAKPOINTS],
+    pub p: [ArcPoint; N],
     /// Number of points.
     pub len: usize,
     /// Two crossings of one plane (the horizon ends until a plane has two).
@@ -283,12 +368,12 @@ pub struct ArcPoints {
     pair_chord: f32,
 }
 
-impl ArcPoints {
+impl<const N: usize> ArcPoints<N> {
     /// The two ends of the upper half circle (the horizon).
     #[inline]
-    pub fn half_circle() -> ArcPoints {
+    pub fn half_circle() -> ArcPoints<N> {
         let mut b = ArcPoints {
-            p: [ArcPoint::START; MAX_BREAKPOINTS],
+            p: [ArcPoint::START; N],
             len: 0,
             pair: [ArcPoint::END, ArcPoint::START],
             pair_chord: 2.0,
@@ -301,7 +386,7 @@ impl ArcPoints {
     /// Appends `p` (ignored when full or not finite).
     #[inline]
     pub fn push(&mut self, p: ArcPoint) {
-        if self.len < MAX_BREAKPOINTS && p.s.is_finite() && p.z.is_finite() {
+        if self.len < N && p.s.is_finite() && p.z.is_finite() {
             self.p[self.len] = p;
             self.len += 1;
         }
@@ -316,11 +401,14 @@ impl ArcPoints {
         }
     }
 
-    /// `p1.s − p0.s`: the recorded pair's own difference where `(p0, p1)` are its two
-    /// crossings, else [`ArcPoint::s_minus`].
+    /// `p1.s − p0.s`: the difference of their local coordinates where both have one, the
+    /// recorded pair's own difference where `(p0, p1)` are its two crossings, else
+    /// [`ArcPoint::s_minus`].
     #[inline]
     pub fn chord(&self, p0: ArcPoint, p1: ArcPoint) -> f32 {
-        if p0 == self.pair[1] && p1 == self.pair[0] {
+        if p0.local.is_finite() && p1.local.is_finite() {
+            p1.local - p0.local
+        } else if p0 == self.pair[1] && p1 == self.pair[0] {
             self.pair_chord
         } else if p0 == self.pair[0] && p1 == self.pair[1] {
             -self.pair_chord
@@ -334,22 +422,25 @@ impl ArcPoints {
         insertion_sort(&mut self.p, self.len, ArcPoint::before);
     }
 
-    /// Sorts, then calls `visit(p0, p1, ds)` for every maximal run of consecutive arcs whose
-    /// midpoints ([`ArcPoint::between`]) satisfy `inside` (adjacent lit pieces are merged,
-    /// so the band integral is evaluated once per lit interval); `ds = p1.s − p0.s`
-    /// ([`ArcPoints::chord`]).
-    pub fn lit_intervals<I: FnMut(ArcPoint) -> bool, V: FnMut(ArcPoint, ArcPoint, f32)>(
+    /// Sorts, then calls `visit(p0, p1, ds)` for every maximal run of consecutive arcs
+    /// `(a, b)` that are `lit(a, b)` (a test of a point between them; adjacent lit pieces are
+    /// merged, so the band integral is evaluated once per lit interval);
+    /// `ds = p1.s − p0.s` ([`ArcPoints::chord`]).
+    pub fn lit_intervals<
+        I: FnMut(ArcPoint, ArcPoint) -> bool,
+        V: FnMut(ArcPoint, ArcPoint, f32),
+    >(
         &mut self,
-        mut inside: I,
+        mut lit_between: I,
         mut visit: V,
     ) {
         self.sort();
         let mut open = false;
         let mut start = ArcPoint::START;
         let mut i = 0;
-        while i + 1 < self.len && i + 1 < MAX_BREAKPOINTS {
+        while i + 1 < self.len && i + 1 < N {
             let (a, b) = (self.p[i], self.p[i + 1]);
-            let lit = a.before(b) && inside(a.between(b));
+            let lit = a.before(b) && lit_between(a, b);
             if lit && !open {
                 start = a;
                 open = true;
@@ -359,7 +450,7 @@ impl ArcPoints {
             }
             i += 1;
         }
-        if open && self.len > 0 && self.len <= MAX_BREAKPOINTS {
+        if open && self.len > 0 && self.len <= N {
             let end = self.p[self.len - 1];
             visit(start, end, self.chord(start, end));
         }

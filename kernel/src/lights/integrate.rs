@@ -20,9 +20,9 @@
 //! over- or under-estimated (measured in `testkit/tests/light_reference.rs`).
 
 use super::band::{SiMode, band_integral_len};
-use super::band_circle::{ArcPoint, ArcPoints, BandCircle, Breakpoints};
-use super::limits::MAX_CUTS;
+use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints};
 use super::limits::MAX_VERTICES;
+use super::limits::{MAX_BREAKPOINTS, MAX_CUTS, SPHERE_BREAKPOINTS};
 use super::polygon::SphericalPolygon;
 use super::sphere::{Cone, SphereCap};
 use crate::footprint::{Ellipse, eta_p_accurate};
@@ -224,15 +224,12 @@ impl LightRegion {
     }
 
     /// The offsets `(wi + wo)_xy · t` of the bands that meet the light: a polygon's
-    /// [`LightRegion::dot_range`] along `t₃` shifted by `wo_xy · t`, a sphere's
-    /// [`SphereCap::offset_range`], which agrees with its crossings.
+    /// [`SphericalPolygon::offset_range`] along `t₃` shifted by `wo_xy · t`, a sphere's
+    /// [`SphereCap::offset_range`]; each agrees with its crossings.
     pub fn offset_range(&self, frame: &SegmentFrame, wo: Vec3) -> (f32, f32) {
         if LightKind::from_u32(self.kind) == LightKind::Polygon {
-            let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
-            let (lo, hi) = self
-                .polygon
-                .dot_range(Vec3::new(frame.tangent.x, frame.tangent.y, 0.0));
-            (lo + wo_t, hi + wo_t)
+            self.polygon
+                .offset_range(&BandFamily::new(frame.tangent, frame.bitangent, wo))
         } else {
             self.sphere.offset_range(frame.tangent, frame.bitangent, wo)
         }
@@ -258,6 +255,23 @@ impl LightRegion {
             self.polygon.kinks(u, out)
         } else {
             self.sphere.kinks(u, out)
+        }
+    }
+
+    /// [`LightRegion::kinks`] along `t₃` as the offsets of the bands of `family`
+    /// (`t₃ · w + wo·t`): a polygon's [`SphericalPolygon::offset_kinks`], which agree with
+    /// its crossings.
+    pub fn offset_kinks(&self, family: &BandFamily, out: &mut Breakpoints) {
+        if LightKind::from_u32(self.kind) == LightKind::Polygon {
+            self.polygon.offset_kinks(family, out)
+        } else {
+            let mut kinks = Breakpoints::empty();
+            self.sphere.kinks(family.t3, &mut kinks);
+            let mut i = 0;
+            while i < kinks.len && i < MAX_CUTS {
+                out.push(kinks.s[i] + family.wo_t);
+                i += 1;
+            }
         }
     }
 
@@ -345,16 +359,23 @@ pub fn lit_intervals<V: FnMut(ArcPoint, ArcPoint, f32)>(
     band: &BandCircle,
     visit: V,
 ) {
-    let mut bp = ArcPoints::half_circle();
     if LightKind::from_u32(region.kind) == LightKind::Polygon {
-        region.polygon.crossings(band, &mut bp);
-        bp.lit_intervals(|p| region.polygon.contains(band.point(p)), visit);
+        // A small polygon decides its lit arcs in the local form of its crossings
+        // ([`SphericalPolygon::lit_between`]).
+        let mut bp = ArcPoints::<MAX_BREAKPOINTS>::half_circle();
+        let polygon = &region.polygon;
+        polygon.crossings(band, &mut bp);
+        bp.lit_intervals(|a, b| polygon.lit_between(band, a, b), visit);
     } else {
         // A sphere decides its lit arcs by the numbers its crossings came from
         // ([`SphereCap::holds_on`]).
+        let mut bp = ArcPoints::<SPHERE_BREAKPOINTS>::half_circle();
         let reach = region.sphere.band_reach(band);
         region.sphere.crossings_with(band, &reach, &mut bp);
-        bp.lit_intervals(|p| region.sphere.holds_on(band, &reach, p), visit);
+        bp.lit_intervals(
+            |a, b| region.sphere.holds_on(band, &reach, a.between(b)),
+            visit,
+        );
     }
 }
 
@@ -581,7 +602,6 @@ fn extent_power(
     sd: f32,
 ) -> f32 {
     let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
-    let t3 = Vec3::new(frame.tangent.x, frame.tangent.y, 0.0);
     let (lo, hi) = region.offset_range(frame, wo);
     let x_lo = math::max(lo / sd, -EXTENT_SDS);
     let x_hi = math::min(hi / sd, EXTENT_SDS);
@@ -589,13 +609,16 @@ fn extent_power(
         return 0.0;
     }
     let mut kinks = Breakpoints::empty();
-    region.kinks(t3, &mut kinks);
+    region.offset_kinks(
+        &BandFamily::new(frame.tangent, frame.bitangent, wo),
+        &mut kinks,
+    );
     let mut cuts = Breakpoints::empty();
     cuts.push(x_lo);
     cuts.push(x_hi);
     let mut i = 0;
     while i < kinks.len && i < MAX_CUTS {
-        let x = (kinks.s[i] + wo_t) / sd;
+        let x = kinks.s[i] / sd;
         if x > x_lo && x < x_hi {
             cuts.push(x);
         }

@@ -10,14 +10,36 @@
 //! (all convex ones, and the star-shaped triangle sets of Velinov Fig. 10); either winding.
 //! Degenerate triangles (collinear or repeated vertices, zero area, a vertex at the shading
 //! point, the polygon's plane through the point) contain nothing. Emitters are two-sided.
+//!
+//! A small polygon (every vertex direction within 0.05 of the first, `r̂`) is also kept in
+//! local form: each vertex as `U_m − r̂`, formed from differences of the positions, so that
+//! its shape keeps ~ε of its own size rather than of 1 (a light 1e-5 rad across would
+//! otherwise be reshaped by 0.6 %). Its crossings, the test of which arcs are lit, the
+//! range of bands it meets and their kinks are all formed from these offsets and from
+//! quantities common to the whole light (`r̂·t₃ + wo·t`, `r̂_b² + r̂_z² − ρ₀²`), rounded once,
+//! which move the light as a whole by ~ε; the chord between two crossings is the difference
+//! of their local coordinates ([`ArcPoint::local`]).
 
-use super::band_circle::{ArcPoints, BandCircle, Breakpoints};
+use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints};
 use super::limits::MAX_VERTICES;
 use crate::math;
 use glam::Vec3;
 
 /// Below this `|det(ĉ, U_m, U_{m+1})|` a fan triangle counts as degenerate.
 const MIN_DET: f32 = 1.0e-12;
+
+/// Edge parameters `τ` whose crossings the wide-band local form keeps: the edge
+/// (`0 ≤ τ ≤ 1`) and a margin, so that a crossing at a vertex is found on both of its edges.
+const LOCAL_TAU: (f32, f32) = (-0.5, 1.5);
+
+/// Edges longer than `√` this (chord, rad) correct the wide-band crossing equation for the
+/// arc's `N` once ([`SphericalPolygon::edge_crossings`]).
+const LOCAL_EXACT_N: f32 = 1.0e-4;
+
+/// A polygon whose vertex directions all lie within this chord of the first one's crosses
+/// the bands in its local form ([`SphericalPolygon::crossings`]); a larger light's chords
+/// are long enough that O(1) roundings do not matter.
+const LOCAL_MAX: f32 = 0.05;
 
 /// A spherical polygon with precomputed edge and spoke planes.
 #[derive(Clone, Copy, Debug)]
@@ -34,6 +56,20 @@ pub struct SphericalPolygon {
     vertex: [Vec3; MAX_VERTICES],
     /// Normalised vertex mean ĉ.
     pub center: Vec3,
+    /// `U_m − r̂`, `r̂ = p₀/|p₀|` the first vertex's direction, formed from the differences
+    /// of the vertex positions (each to ~ε of its own length, where `U_m` itself keeps ~ε
+    /// of 1: an edge of a light 1e-5 rad across would move by 0.6 % of the light).
+    offset: [Vec3; MAX_VERTICES],
+    /// `r̂` rounded: only the O(1) components that every vertex shares are taken from it.
+    reference: Vec3,
+    /// Every `|U_m − r̂|` below [`LOCAL_MAX`] (and finite): the bands cross in local form,
+    /// and [`edge`](Self::edge), [`spoke`](Self::spoke) are formed from the offsets, with
+    /// `edge_k`, `spoke_k` the planes' values at `r̂`.
+    local: bool,
+    /// `(U_m × U_{m+1})·r̂` of a local polygon (else 0): `edge_m·(r̂ + e) = edge_m·e + edge_k`.
+    edge_k: [f32; MAX_VERTICES],
+    /// `(C × U_m)·r̂` of a local polygon (else 0), `C` the fan's centre.
+    spoke_k: [f32; MAX_VERTICES],
 }
 
 impl SphericalPolygon {
@@ -45,6 +81,11 @@ impl SphericalPolygon {
         orient: [0.0; MAX_VERTICES],
         vertex: [Vec3::ZERO; MAX_VERTICES],
         center: Vec3::Z,
+        offset: [Vec3::ZERO; MAX_VERTICES],
+        reference: Vec3::Z,
+        local: false,
+        edge_k: [0.0; MAX_VERTICES],
+        spoke_k: [0.0; MAX_VERTICES],
     };
 
     /// The half-angle of the cone about [`center`](Self::center) that contains the polygon:
@@ -72,6 +113,9 @@ impl SphericalPolygon {
             return None;
         }
         let mut u = [Vec3::ZERO; MAX_VERTICES];
+        let mut offset = [Vec3::ZERO; MAX_VERTICES];
+        let mut local = true;
+        let p0 = Vec3::new(vertices[0][0], vertices[0][1], vertices[0][2]);
         let mut sum = Vec3::ZERO;
         let mut max_z = f32::NEG_INFINITY;
         let mut i = 0;
@@ -82,6 +126,11 @@ impl SphericalPolygon {
                 return None;
             }
             u[i] = p.normalize_or_zero();
+            offset[i] = direction_offset(p, p0);
+            // `!(a < b)` rather than `a >= b`: NaN (a vertex at the point) counts as far.
+            if !(offset[i].length_squared() < LOCAL_MAX * LOCAL_MAX) {
+                local = false;
+            }
             sum += u[i];
             max_z = math::max(max_z, u[i].z);
             i += 1;
@@ -97,7 +146,16 @@ impl SphericalPolygon {
             orient: [0.0; MAX_VERTICES],
             vertex: u,
             center,
+            offset,
+            reference: u[0],
+            local,
+            edge_k: [0.0; MAX_VERTICES],
+            spoke_k: [0.0; MAX_VERTICES],
         };
+        if local {
+            poly.local_planes();
+            return Some(poly);
+        }
         let mut m = 0;
         while m < n && m < MAX_VERTICES {
             let next = if m + 1 < n { m + 1 } else { 0 };
@@ -121,16 +179,65 @@ impl SphericalPolygon {
         Some(poly)
     }
 
+    /// A local polygon's planes from its offsets: `U_a × U_b = r̂ × Δ + a × Δ` (`a = U_a − r̂`,
+    /// `Δ = U_b − U_a`), `C × U_a = r̂ × (a − e_c) + e_c × a` about the fan's centre
+    /// `C = r̂ + e_c` (`e_c` the offsets' mean, `C` along ĉ), and their values at `r̂`,
+    /// `(a × Δ)·r̂` and `(e_c × a)·r̂`: every term small and formed to its relative accuracy,
+    /// where `U_a × (U_b − U_a)` keeps ~ε of 1 in each rounded `U`. The orientation is the
+    /// edge plane's sign at `C` (no threshold: a triangle of a light 1e-6 rad across has a
+    /// determinant of 1e-12).
+    fn local_planes(&mut self) {
+        let r = self.reference;
+        let n = self.count;
+        let mut centre = Vec3::ZERO;
+        let mut m = 0;
+        while m < n && m < MAX_VERTICES {
+            centre += self.offset[m];
+            m += 1;
+        }
+        let centre = centre * (1.0 / n as f32);
+        let mut m = 0;
+        while m < n && m < MAX_VERTICES {
+            let a = self.offset[m];
+            let ca = centre.cross(a);
+            self.spoke[m] = r.cross(a - centre) + ca;
+            self.spoke_k[m] = ca.dot(r);
+            m += 1;
+        }
+        let mut m = 0;
+        while m < n && m < MAX_VERTICES {
+            let next = if m + 1 < n { m + 1 } else { 0 };
+            if next < MAX_VERTICES {
+                let a = self.offset[m];
+                let along = self.offset[next] - a;
+                let aa = a.cross(along);
+                self.edge[m] = r.cross(along) + aa;
+                self.edge_k[m] = aa.dot(r);
+                let det = self.edge[m].dot(centre) + self.edge_k[m];
+                self.orient[m] = if det != 0.0 { math::sign(det) } else { 0.0 };
+            }
+            m += 1;
+        }
+    }
+
     /// Whether the unit direction `w` is inside one of the fan triangles.
     pub fn contains(&self, w: Vec3) -> bool {
+        self.inside::<false>(w)
+    }
+
+    /// Whether `p` is inside one of the fan triangles, each plane's value taken as `n·p`
+    /// for a direction `p = w` ([`SphericalPolygon::contains`]), or as `n·p + k` for a
+    /// local offset `p = e`, the direction `r̂ + e` (`LOCAL`, `contains_local`).
+    fn inside<const LOCAL: bool>(&self, p: Vec3) -> bool {
+        let at_r = |k: f32| if LOCAL { k } else { 0.0 };
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
             let o = self.orient[m];
             let next = if m + 1 < self.count { m + 1 } else { 0 };
             if o != 0.0 && next < MAX_VERTICES {
-                let inside = o * self.edge[m].dot(w) >= 0.0
-                    && o * self.spoke[m].dot(w) >= 0.0
-                    && o * self.spoke[next].dot(w) <= 0.0;
+                let inside = o * (self.edge[m].dot(p) + at_r(self.edge_k[m])) >= 0.0
+                    && o * (self.spoke[m].dot(p) + at_r(self.spoke_k[m])) >= 0.0
+                    && o * (self.spoke[next].dot(p) + at_r(self.spoke_k[next])) <= 0.0;
                 if inside {
                     return true;
                 }
@@ -192,14 +299,317 @@ impl SphericalPolygon {
         }
     }
 
-    /// Adds where the band crosses the great circles of the polygon's edges.
-    pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
+    /// `[min, max]` of the offsets `o` of the bands of `family` that meet the polygon:
+    /// [`dot_range`] along `t₃` shifted by `wo·t`, or for a small polygon the same from its
+    /// local offsets (`band_offset_of`), which agree with its crossings
+    /// to the offsets' relative accuracy where `t₃ · w` keeps only ~ε of 1.
+    ///
+    /// [`dot_range`]: SphericalPolygon::dot_range
+    pub fn offset_range(&self, family: &BandFamily) -> (f32, f32) {
+        if !self.local {
+            let (lo, hi) = self.dot_range(family.t3);
+            return (lo + family.wo_t, hi + family.wo_t);
+        }
+        let mut range = (f32::INFINITY, f32::NEG_INFINITY);
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
-            band.plane_crossings(self.edge[m], 0.0, None, out);
+            let next = if m + 1 < self.count { m + 1 } else { 0 };
+            if next < MAX_VERTICES {
+                let v = self.band_offset_of(family, self.offset[m]);
+                range = widen(range, (v, v));
+                let tau = self.local_stationary(family.t3, self.offset[m], self.offset[next]);
+                if tau > 0.0 && tau < 1.0 {
+                    let v = self.band_offset_of(
+                        family,
+                        self.local_point(self.offset[m], self.offset[next], tau).0,
+                    );
+                    range = widen(range, (v, v));
+                }
+            }
+            m += 1;
+        }
+        if self.contains(family.t3) {
+            range.1 = 1.0 + family.wo_t;
+        }
+        if self.contains(-family.t3) {
+            range.0 = -1.0 + family.wo_t;
+        }
+        range
+    }
+
+    /// Adds the offsets of the bands of `family` where the chord has a kink ([`kinks`]
+    /// along `t₃`, shifted by `wo·t`), for a small polygon from its local offsets, as
+    /// [`SphericalPolygon::offset_range`].
+    ///
+    /// [`kinks`]: SphericalPolygon::kinks
+    pub fn offset_kinks(&self, family: &BandFamily, out: &mut Breakpoints) {
+        if !self.local {
+            let mut kinks = Breakpoints::empty();
+            self.kinks(family.t3, &mut kinks);
+            let mut i = 0;
+            while i < kinks.len && i < kinks.s.len() {
+                out.push(kinks.s[i] + family.wo_t);
+                i += 1;
+            }
+            return;
+        }
+        let mut m = 0;
+        while m < self.count && m < MAX_VERTICES {
+            let next = if m + 1 < self.count { m + 1 } else { 0 };
+            if next < MAX_VERTICES {
+                if self.reference.z + self.offset[m].z >= 0.0 {
+                    out.push(self.band_offset_of(family, self.offset[m]));
+                }
+                let tau = self.local_stationary(family.t3, self.offset[m], self.offset[next]);
+                if tau > 0.0 && tau < 1.0 {
+                    let (e, z) = self.local_point(self.offset[m], self.offset[next], tau);
+                    if z >= 0.0 {
+                        out.push(self.band_offset_of(family, e));
+                    }
+                }
+                let za = self.reference.z + self.offset[m].z;
+                let zb = self.reference.z + self.offset[next].z;
+                if (za > 0.0 && zb < 0.0) || (za < 0.0 && zb > 0.0) {
+                    // `z` is linear in τ before the division by N.
+                    let tau = za / (za - zb);
+                    out.push(self.band_offset_of(
+                        family,
+                        self.local_point(self.offset[m], self.offset[next], tau).0,
+                    ));
+                }
+            }
             m += 1;
         }
     }
+
+    /// The offset `o` of the band of `family` through the direction `r̂ + e` (`e` a local
+    /// offset, `r̂ + e` unit). Where the bands are wide (`|c₀| ≤ ρ₀`) it is
+    /// `(r̂·t₃ + wo·t) + e·t₃`; where they are small circles about `±t₃` (`|c₀| > ρ₀`) an
+    /// ulp of `c` would move them by `ε/ρ`, and the band is placed by its radius instead:
+    /// `ρ(o)² = ρ₀² + o(2 wo·t − o)` equals the direction's `ρ_w² = (r̂_b + e_b)² + (r̂_z +
+    /// e_z)²` at `o = D/(wo·t + sgn(wo·t)√(wo·t² − D))`, `D = ρ_w² − ρ₀²` formed as
+    /// `(r̂_b² + r̂_z² − ρ₀²) + 2(r̂_b e_b + r̂_z e_z) + e_b² + e_z²` (the first term as the
+    /// crossings form it, [`SphericalPolygon::radius_excess`]).
+    fn band_offset_of(&self, family: &BandFamily, e: Vec3) -> f32 {
+        let r = self.reference;
+        if !family.narrow() {
+            return (r.dot(family.t3) + family.wo_t) + e.dot(family.t3);
+        }
+        let (rb, eb) = (r.dot(family.b3), e.dot(family.b3));
+        let d = self.radius_excess(rb, family.rho0_sq)
+            + (2.0 * (rb * eb + r.z * e.z) + (eb * eb + e.z * e.z));
+        let wo_t = family.wo_t;
+        d / (wo_t + math::sign(wo_t) * math::sqrt0(wo_t * wo_t - d))
+    }
+
+    /// `(w − r̂, w_z)` at `w(τ) = ((1 − τ) U_a + τ U_b)/N` on the arc from `U_a` to `U_b`,
+    /// `N² = 1 − τ(1 − τ) L²`: `w − r̂ = (G + r̂ (1 − N))/N`, `G = (1 − τ)(U_a − r̂) + τ(U_b −
+    /// r̂)`, `1 − N = τ(1 − τ) L²/(1 + N)`, each small and formed to its relative accuracy.
+    fn local_point(&self, da: Vec3, db: Vec3, tau: f32) -> (Vec3, f32) {
+        let along = db - da;
+        let bend = tau * (1.0 - tau) * along.length_squared();
+        let n = math::sqrt0(1.0 - bend);
+        let g = da + along * tau;
+        let e = (g + self.reference * (bend / (1.0 + n))) * (1.0 / n);
+        (e, (self.reference.z + g.z) / n)
+    }
+
+    /// Where `u · w(τ)` is stationary on the arc from `U_a` to `U_b` (small polygons):
+    /// `τ* = 1/2 + (U_b − U_a)·u/(r̂·u L²)` to first order in `L²`; the value there is
+    /// second-order in `τ`'s error. NaN or outside `(0, 1)` where it is not on the edge.
+    fn local_stationary(&self, u: Vec3, da: Vec3, db: Vec3) -> f32 {
+        let along = db - da;
+        0.5 + along.dot(u) / (self.reference.dot(u) * along.length_squared())
+    }
+
+    /// `r̂·t₃ − c`, the reference's height over the band: `c₀` and `r̂·t₃` are rounded once
+    /// for all bands (a shift of the whole light by ~ε), the exact offset `o` apart.
+    #[inline]
+    fn reference_height(&self, band: &BandCircle) -> f32 {
+        (self.reference.dot(band.t3) - band.c0) - band.offset
+    }
+
+    /// Whether the arc of `band` between its consecutive points `a` and `b` is lit: for a
+    /// small polygon, the midpoint of their local offsets (`w − r̂`; a horizon end's
+    /// from `s = ±1`, `z = 0`) against the fan in local form
+    /// (`contains_local`), which sees the polygon its crossings see;
+    /// otherwise [`SphericalPolygon::contains`] at [`ArcPoint::between`].
+    pub fn lit_between(&self, band: &BandCircle, a: ArcPoint, b: ArcPoint) -> bool {
+        if !self.local || !(a.local.is_finite() || b.local.is_finite()) {
+            return self.contains(band.point(a.between(b)));
+        }
+        let end = |p: ArcPoint| {
+            if p.local.is_finite() {
+                (p.local, p.local_z)
+            } else {
+                // A horizon end (the only points without a local form here).
+                (
+                    p.s - self.reference.dot(band.b3) / band.rho,
+                    -self.reference.z / band.rho,
+                )
+            }
+        };
+        let ((ba, za), (bb, zb)) = (end(a), end(b));
+        let e = band.t3 * (-self.reference_height(band))
+            + (band.b3 * (0.5 * (ba + bb)) + Vec3::Z * (0.5 * (za + zb))) * band.rho;
+        self.contains_local(e)
+    }
+
+    /// [`SphericalPolygon::contains`] for the direction `r̂ + e` (`e` small) of a local
+    /// polygon: each plane's value `n·(r̂ + e)` as `n·e + n·r̂`, the latter formed from the
+    /// offsets (`local_planes`), so that the test sees the polygon its crossings see.
+    #[inline]
+    fn contains_local(&self, e: Vec3) -> bool {
+        self.inside::<true>(e)
+    }
+
+    /// `r̂_b² + r̂_z² − ρ₀²`, formed once for a scratch and view: the reference's squared
+    /// distance from the `t₃` axis less the centre line's.
+    #[inline]
+    fn radius_excess(&self, rb: f32, rho0_sq: f32) -> f32 {
+        (rb * rb + self.reference.z * self.reference.z) - rho0_sq
+    }
+
+    /// Adds where the band crosses the great circles of the polygon's edges: for a small
+    /// polygon (every vertex within `LOCAL_MAX` = 0.05 of the first) in local form, with
+    /// [`ArcPoint::local`] set (`edge_crossings` on wide bands, `edge_crossings_narrow` on
+    /// narrow ones); otherwise on the whole
+    /// circles ([`BandCircle::plane_crossings`]).
+    pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
+        let narrow = band.family().narrow();
+        let mut m = 0;
+        while m < self.count && m < MAX_VERTICES {
+            if self.local {
+                let next = if m + 1 < self.count { m + 1 } else { 0 };
+                if next < MAX_VERTICES {
+                    if narrow {
+                        self.edge_crossings_narrow(band, self.edge[m], self.edge_k[m], out);
+                    } else {
+                        self.edge_crossings(band, self.offset[m], self.offset[next], out);
+                    }
+                }
+            } else {
+                band.plane_crossings(self.edge[m], 0.0, None, out);
+            }
+            m += 1;
+        }
+    }
+
+    /// The band's crossings with the great arc from `U_a` to `U_b` (extended by
+    /// [`LOCAL_TAU`]), in local form, for a wide band (`|c₀| ≤ ρ₀`, where an ulp of `c` moves
+    /// the band by at most `√2 ε`). Along the arc `w(τ) = ((1 − τ) U_a + τ U_b)/N`
+    /// ([`SphericalPolygon::local_point`]), and with `h = U·t₃ − c` the vertices' heights over
+    /// the band (`h_r + (U − r̂)·t₃`, `h_r` [`SphericalPolygon::reference_height`]), `w·t₃ = c`
+    /// is
+    ///
+    /// `h_a + τ (h_b − h_a) + c τ(1 − τ) L²/(1 + N) = 0`,
+    ///
+    /// a quadratic in `τ` once `N` is fixed: taken as 1, which puts an error of `L⁴/128` into
+    /// heights of size `L`, below `εL` up to `L² = LOCAL_EXACT_N`; beyond, once more at the
+    /// root's own `N` (leaving `L⁶/2048`, below `εL` up to `L = 0.1`, twice `LOCAL_MAX`). The
+    /// kinks ([`SphericalPolygon::band_offset_of`]) take the same `h_r`.
+    fn edge_crossings(&self, band: &BandCircle, da: Vec3, db: Vec3, out: &mut ArcPoints) {
+        let along = db - da;
+        let l2 = along.length_squared();
+        let ha = self.reference_height(band) + da.dot(band.t3);
+        let dh = along.dot(band.t3);
+        let roots = edge_roots(ha, dh, band.c * l2 * 0.5);
+        let mut k = 0;
+        while k < 2 {
+            let mut tau = roots[k];
+            // A root far outside the edge (the far one of a nearly straight edge) is left
+            // alone: its `N` would move it, and `nearest` could then pick the other root.
+            let near_edge = tau >= 2.0 * LOCAL_TAU.0 && tau <= 2.0 * LOCAL_TAU.1;
+            if near_edge && l2 > LOCAL_EXACT_N {
+                let n = math::sqrt0(1.0 - tau * (1.0 - tau) * l2);
+                tau = nearest(edge_roots(ha, dh, band.c * l2 / (1.0 + n)), tau);
+            }
+            if near_edge && tau >= LOCAL_TAU.0 && tau <= LOCAL_TAU.1 {
+                let e = self.local_point(da, db, tau).0;
+                self.push_local(band, e.dot(band.b3), e.z, out);
+            }
+            k += 1;
+        }
+    }
+
+    /// Adds the point `w = r̂ + e` of the band's upper half (`e_b = (w − r̂)·b₃`,
+    /// `e_z = (w − r̂)_z`), with its local coordinates.
+    #[inline]
+    fn push_local(&self, band: &BandCircle, eb: f32, ez: f32, out: &mut ArcPoints) {
+        let z = (self.reference.z + ez) / band.rho;
+        if super::horizon::on_upper_half(z) {
+            let s = (self.reference.dot(band.b3) + eb) / band.rho;
+            // Beyond |s| = 1/2, s from z, as [`BandCircle::plane_crossings`] does.
+            let s = if s > 0.5 {
+                math::sqrt0(1.0 - z * z)
+            } else if s < -0.5 {
+                -math::sqrt0(1.0 - z * z)
+            } else {
+                s
+            };
+            let mut p = ArcPoint::on_circle(s, z);
+            p.local = eb / band.rho;
+            p.local_z = ez / band.rho;
+            out.push(p);
+        }
+    }
+
+    /// The band's crossings with the great circle through `U_a` and `U_b`, in local form,
+    /// for a narrow band (`|c₀| > ρ₀`, a small circle about `±t₃`): the problem of
+    /// [`BandCircle::plane_crossings`] with every point written `w = r̂ + e`. The plane
+    /// `(U_a × U_b)·w = 0` is `P·e + k = 0`, `P` its local-form `normal` and `k` its value at
+    /// `r̂` (`local_planes`: small, each to its relative accuracy). On the band
+    /// `e_t = c − r̂·t₃` (the band's height, [`SphericalPolygon::reference_height`]), so the
+    /// crossings are where the line `P_b e_b + P_z e_z = −(k + P_t e_t)` meets the circle
+    /// `(r̂_b + e_b)² + (r̂_z + e_z)² = ρ²`, `ρ² = ρ₀² + o(2 wo·t − o)`, whose
+    /// `ρ² − r̂_b² − r̂_z²` keeps [`SphericalPolygon::radius_excess`] as the kinks do. As in
+    /// the band circle's own form, an ulp of `c` moves the band along `t₃` (by ~ερ across
+    /// it), not across it by `ε/ρ` as the height form would (2e-6 rad on a band of radius
+    /// 0.03).
+    fn edge_crossings_narrow(&self, band: &BandCircle, normal: Vec3, k: f32, out: &mut ArcPoints) {
+        let r = self.reference;
+        let (pt, pb, pz) = band.components(normal);
+        let r2 = pb * pb + pz * pz;
+        if !(r2 > 0.0) {
+            return;
+        }
+        let et = -self.reference_height(band);
+        let g = -(k + pt * et);
+        // The line's point nearest `r̂` (`e = 0`), and its unit direction.
+        let (e0b, e0z) = (g * pb / r2, g * pz / r2);
+        let len = math::sqrt(r2);
+        let (db_, dz_) = (-pz / len, pb / len);
+        let rb = r.dot(band.b3);
+        let (xb, xz) = (rb + e0b, r.z + e0z);
+        // λ² + 2 B λ + C = 0 along the line.
+        let bq = db_ * xb + dz_ * xz;
+        let o = band.offset;
+        let wo_t = band.family().wo_t;
+        let cq = (self.radius_excess(rb, band.rho0_sq) - o * (2.0 * wo_t - o))
+            + (2.0 * (rb * e0b + r.z * e0z) + (e0b * e0b + e0z * e0z));
+        let disc = bq * bq - cq;
+        if !(disc >= 0.0) {
+            return;
+        }
+        let q = -(bq + math::sign(bq) * math::sqrt(disc));
+        let roots = [if q != 0.0 { cq / q } else { 0.0 }, q];
+        let mut i = 0;
+        while i < 2 {
+            let lambda = roots[i];
+            self.push_local(band, e0b + lambda * db_, e0z + lambda * dz_, out);
+            i += 1;
+        }
+    }
+}
+
+/// `U − r̂` for the unit directions of `p` and `p0` (`r̂ = p₀/|p₀|`), from `Δ = p − p₀`:
+/// `Δ/|p| − p₀ (Δ·(p + p₀))/(|p| |p₀| (|p| + |p₀|))`. For close vertices `Δ` is formed
+/// exactly and both terms to ~ε of themselves; NaN for a vertex at the shading point.
+#[inline]
+fn direction_offset(p: Vec3, p0: Vec3) -> Vec3 {
+    let delta = p - p0;
+    let (n, n0) = (p.length(), p0.length());
+    delta * (1.0 / n) - p0 * (delta.dot(p + p0) / (n * n0 * (n + n0)))
 }
 
 /// The union of two ranges.
@@ -248,5 +658,32 @@ pub fn arc_stationary<V: FnMut(f32, Vec3)>(a: Vec3, b: Vec3, u: Vec3, mut visit:
     }
     if s_min >= 0.0 && s_min <= theta {
         visit(-amp, -peak);
+    }
+}
+
+/// The roots `τ` of `h_a + τ dh + k τ(1 − τ) = 0` (NaN where there is none), each by the
+/// form that does not cancel.
+#[inline]
+fn edge_roots(ha: f32, dh: f32, k: f32) -> [f32; 2] {
+    // −k τ² + (dh + k) τ + h_a = 0
+    let (qa, qb) = (-k, dh + k);
+    let disc = qb * qb + 4.0 * k * ha;
+    if !(disc >= 0.0) {
+        return [f32::NAN; 2];
+    }
+    let q = -0.5 * (qb + math::sign(qb) * math::sqrt(disc));
+    let near = if q != 0.0 { ha / q } else { f32::NAN };
+    let far = if qa != 0.0 { q / qa } else { f32::NAN };
+    [near, far]
+}
+
+/// The one of `roots` nearest `tau` (NaN if neither is finite).
+#[inline]
+fn nearest(roots: [f32; 2], tau: f32) -> f32 {
+    let (r0, r1) = (roots[0], roots[1]);
+    if !r1.is_finite() || (r0.is_finite() && math::abs(r0 - tau) <= math::abs(r1 - tau)) {
+        r0
+    } else {
+        r1
     }
 }

@@ -257,12 +257,17 @@ impl SphereCap {
     }
 
     /// Adds where the band crosses the cone boundary (at most two points).
-    pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
+    pub fn crossings<const N: usize>(&self, band: &BandCircle, out: &mut ArcPoints<N>) {
         self.crossings_with(band, &self.band_reach(band), out);
     }
 
     /// [`SphereCap::crossings`] with the band's [`BandReach`] already formed.
-    pub fn crossings_with(&self, band: &BandCircle, reach: &BandReach, out: &mut ArcPoints) {
+    pub fn crossings_with<const N: usize>(
+        &self,
+        band: &BandCircle,
+        reach: &BandReach,
+        out: &mut ArcPoints<N>,
+    ) {
         if self.alpha >= math::PI {
             return;
         }

@@ -381,8 +381,10 @@ pub fn footprint_inputs(r: &Row) -> (Scratch, Ellipse, f32) {
 /// the edge of a 7.8e-5-rad sphere).
 pub const K_LIGHT: f64 = 16.0;
 
-/// The light sweep's tables: the committed subset (or `LIGHT_SWEEP_DIR`'s sample) first and,
-/// by default, the queries larger samples found over the bound (`light_found.csv`).
+/// The light sweep's tables: the committed subset (or `LIGHT_SWEEP_DIR`'s sample) first;
+/// by default, the queries larger samples found over the bound (`light_found.csv`); and the
+/// same domain with V grooves (`light_vgroove.csv`, `light_sweep.py --vgroove`, or
+/// `LIGHT_VGROOVE_SWEEP_DIR`'s sample).
 pub fn light_tables() -> Vec<Table> {
     let mut tables = vec![Table::load(
         "LIGHT_SWEEP_DIR",
@@ -392,7 +394,18 @@ pub fn light_tables() -> Vec<Table> {
     if std::env::var_os("LIGHT_SWEEP_DIR").is_none() {
         tables.push(Table::committed("reference/golden/sweep", "light_found"));
     }
+    tables.push(Table::load(
+        "LIGHT_VGROOVE_SWEEP_DIR",
+        "reference/golden/sweep",
+        "light_vgroove",
+    ));
     tables
+}
+
+/// Whether a light-sweep row's scratches are V grooves (`light_sweep.py --vgroove`: all
+/// of a query's scratches have the same profile).
+pub fn light_is_vgroove(r: &Row) -> bool {
+    r.u("s0_profile") == Profile::Triangle as u32
 }
 
 /// A light-sweep row's `reach` (0 in samples written before the column existed).
@@ -486,10 +499,13 @@ pub fn light_group(
     names: &mut BTreeMap<(usize, usize), &'static str>,
 ) -> ((usize, usize), &'static str) {
     let (alpha, elev) = (r.d("alpha"), r.d("elev"));
-    let (ki, kn) = match (r.u("kind"), r.u("cone")) {
-        (0, 0) => (0, "sphere (asin)"),
-        (0, _) => (1, "sphere (atan)"),
-        _ => (2, "polygon"),
+    let (ki, kn) = match (r.u("kind"), r.u("cone"), light_is_vgroove(r)) {
+        (0, 0, false) => (0, "sphere (asin)"),
+        (0, _, false) => (1, "sphere (atan)"),
+        (_, _, false) => (2, "polygon"),
+        (0, 0, true) => (3, "V groove, sphere (asin)"),
+        (0, _, true) => (4, "V groove, sphere (atan)"),
+        (_, _, true) => (5, "V groove, polygon"),
     };
     let near = alpha < 3.0 && elev - alpha < NEAR_HORIZON;
     let si = if near {
