@@ -50,22 +50,20 @@ const MIN_QUERIES: usize = 400;
 /// where `light_extent_kappa.csv` has it, else 0), and the count of lit queries within it,
 /// so that a change can only keep them. Since a small polygon crosses the bands in local
 /// form (`lights::polygon`): all 383 lit queries within the bound (380 before, the other 3
-/// polygons at the horizon up to 3.7×), worst 0.72 near the horizon and 0.64 away from it;
-/// 367 within 1e-4 of the window's value (325 before). Since a sphere's bands are placed by
-/// their exact offset from the band's centre line, its range ends and lit arcs come from
-/// the same numbers as its crossings and its horizon crossings are formed without
-/// cancellation: 380 within the bound (360 before), every query away from the horizon
-/// within it (worst 24× before) and 3.7× near it (53× before); 325 within 1e-4 (300
-/// before). Since
-/// the window is measured apart, the cuts at bands tangent inside a sphere's cone, the
-/// panels' Gaussian mass without `erf` differences, the panels following the chord ends'
-/// sweep and panels of at most 2.5 sd and 4.5 e-folds: 360 within the bound (346 before
-/// them), worst 24× away from the horizon (48× before) and 53× near it; 300 within 1e-4 of
-/// the window's value (282 before; 275 on the whole line). History on the whole line before:
-/// other 1.6e-2 since the cuts where a band is tangent to a polygon edge, 2.4e-2 since the
-/// cuts at the band's specular point, 0.31 before them; near the horizon 1.0 (values below
-/// 1e-11 wholly beyond the window), 7.0e3 before the band circle kept `cos φ`; within 1e-4:
-/// 275, 266, 257, 207.
+/// polygons at the horizon up to 3.7×), worst 0.72 near the horizon and 0.64 away
+/// from it; 370 within 1e-4 of the window's value (325 before). Since a sphere's bands are
+/// placed by their exact offset from the band's centre line, its range ends and lit arcs come
+/// from the same numbers as its crossings and its horizon crossings are formed without
+/// cancellation: 380 within the bound (360 before), every query away from the horizon within it
+/// (worst 24× before) and 3.7× near it (53× before); 325 within 1e-4 (300 before). Since the
+/// window is measured apart, the cuts at bands tangent inside a sphere's cone, the panels'
+/// Gaussian mass without `erf` differences, the panels following the chord ends' sweep and
+/// panels of at most 2.5 sd and 4.5 e-folds: 360 within the bound (346 before them), worst 24×
+/// away from the horizon (48× before) and 53× near it; 300 within 1e-4 of the window's value
+/// (282 before; 275 on the whole line). History on the whole line before: other 1.6e-2 since
+/// the cuts where a band is tangent to a polygon edge, 2.4e-2 since the cuts at the band's
+/// specular point, 0.31 before them; near the horizon 1.0 (values below 1e-11 wholly beyond the
+/// window), 7.0e3 before the band circle kept `cos φ`; within 1e-4: 275, 266, 257, 207.
 const RATCHET: f64 = 1.0;
 const RATCHET_HORIZON: f64 = 1.0;
 const RATCHET_WITHIN: usize = 383;
@@ -203,6 +201,11 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
                 Cause::Other
             };
             let ratio = err / bound(kappa);
+            println!(
+                "ROW {index} {} {} {err:.3e} {ratio:.3}",
+                g.1.replace(" ", "_"),
+                r.d("alpha")
+            );
             writeln!(
                 dump,
                 "{},{:e},{:e},{:e},{err:e},{:e}",

@@ -407,7 +407,14 @@ impl<const N: usize> ArcPoints<N> {
     #[inline]
     pub fn chord(&self, p0: ArcPoint, p1: ArcPoint) -> f32 {
         if p0.local.is_finite() && p1.local.is_finite() {
-            p1.local - p0.local
+            // As [`ArcPoint::s_minus`]: beyond |s| = 1/2 on one side, from the heights,
+            // whose difference the local form keeps (near the band's horizon end `s` moves
+            // only at second order along the band, and so does its local coordinate).
+            if (p1.s >= 0.5 && p0.s >= 0.5) || (p1.s <= -0.5 && p0.s <= -0.5) {
+                (p0.local_z - p1.local_z) * (p0.z + p1.z) / (p0.s + p1.s)
+            } else {
+                p1.local - p0.local
+            }
         } else if p0 == self.pair[1] && p1 == self.pair[0] {
             self.pair_chord
         } else if p0 == self.pair[0] && p1 == self.pair[1] {

@@ -430,7 +430,7 @@ impl SphericalPolygon {
     }
 
     /// Whether the arc of `band` between its consecutive points `a` and `b` is lit: for a
-    /// small polygon, the midpoint of their local offsets (`w − r̂`; a horizon end's
+    /// small polygon, the arc's midpoint from their local offsets (`w − r̂`; a horizon end's
     /// from `s = ±1`, `z = 0`) against the fan in local form
     /// (`contains_local`), which sees the polygon its crossings see;
     /// otherwise [`SphericalPolygon::contains`] at [`ArcPoint::between`].
@@ -450,8 +450,19 @@ impl SphericalPolygon {
             }
         };
         let ((ba, za), (bb, zb)) = (end(a), end(b));
-        let e = band.t3 * (-self.reference_height(band))
-            + (band.b3 * (0.5 * (ba + bb)) + Vec3::Z * (0.5 * (za + zb))) * band.rho;
+        // The arc's midpoint, on the circle: the chord's midpoint `m` (in units of ρ, about
+        // the circle's centre) pushed out to the circle, `m/|m| = m (1 + k)`, with
+        // `|m|² = 1 − x`, `x = (d/2)²` from the chord `d` in local coordinates; the chord's
+        // own midpoint lies `d²/8` inside, 6 % of a 0.05-rad light on a band of radius 0.1.
+        let (db, dz) = (ba - bb, za - zb);
+        let x = math::min(0.25 * (db * db + dz * dz), 0.75);
+        let root = math::sqrt(1.0 - x);
+        let k = x / (root * (1.0 + root));
+        let (mb, mz) = (0.5 * (ba + bb), 0.5 * (za + zb));
+        let rb = self.reference.dot(band.b3) / band.rho;
+        let rz = self.reference.z / band.rho;
+        let (mb, mz) = (mb + (rb + mb) * k, mz + (rz + mz) * k);
+        let e = band.t3 * (-self.reference_height(band)) + (band.b3 * mb + Vec3::Z * mz) * band.rho;
         self.contains_local(e)
     }
 
