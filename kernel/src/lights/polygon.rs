@@ -62,10 +62,12 @@ pub struct SphericalPolygon {
     offset: [Vec3; MAX_VERTICES],
     /// `r̂` rounded: only the O(1) components that every vertex shares are taken from it.
     reference: Vec3,
-    /// Every `|U_m − r̂|` below [`LOCAL_MAX`] (and finite): the bands cross in local form,
+    /// 1 where every `|U_m − r̂|` is below [`LOCAL_MAX`] (and finite), else 0: the bands
+    /// cross in local form ([`SphericalPolygon::is_local`]; a `u32`, not a `bool`, whose
+    /// niche would carry `Option<SphericalPolygon>`'s tag, which rust-gpu cannot copy),
     /// and [`edge`](Self::edge), [`spoke`](Self::spoke) are formed from the offsets, with
     /// `edge_k`, `spoke_k` the planes' values at `r̂`.
-    local: bool,
+    local: u32,
     /// `(U_m × U_{m+1})·r̂` of a local polygon (else 0): `edge_m·(r̂ + e) = edge_m·e + edge_k`.
     edge_k: [f32; MAX_VERTICES],
     /// `(C × U_m)·r̂` of a local polygon (else 0), `C` the fan's centre.
@@ -83,7 +85,7 @@ impl SphericalPolygon {
         center: Vec3::Z,
         offset: [Vec3::ZERO; MAX_VERTICES],
         reference: Vec3::Z,
-        local: false,
+        local: 0,
         edge_k: [0.0; MAX_VERTICES],
         spoke_k: [0.0; MAX_VERTICES],
     };
@@ -148,7 +150,7 @@ impl SphericalPolygon {
             center,
             offset,
             reference: u[0],
-            local,
+            local: u32::from(local),
             edge_k: [0.0; MAX_VERTICES],
             spoke_k: [0.0; MAX_VERTICES],
         };
@@ -177,6 +179,13 @@ impl SphericalPolygon {
             m += 1;
         }
         Some(poly)
+    }
+
+    /// Whether the polygon is kept in local form (every vertex direction within 0.05 of
+    /// the first).
+    #[inline]
+    pub fn is_local(&self) -> bool {
+        self.local != 0
     }
 
     /// A local polygon's planes from its offsets: `U_a × U_b = r̂ × Δ + a × Δ` (`a = U_a − r̂`,
@@ -306,7 +315,7 @@ impl SphericalPolygon {
     ///
     /// [`dot_range`]: SphericalPolygon::dot_range
     pub fn offset_range(&self, family: &BandFamily) -> (f32, f32) {
-        if !self.local {
+        if !self.is_local() {
             let (lo, hi) = self.dot_range(family.t3);
             return (lo + family.wo_t, hi + family.wo_t);
         }
@@ -343,7 +352,7 @@ impl SphericalPolygon {
     ///
     /// [`kinks`]: SphericalPolygon::kinks
     pub fn offset_kinks(&self, family: &BandFamily, out: &mut Breakpoints) {
-        if !self.local {
+        if !self.is_local() {
             let mut kinks = Breakpoints::empty();
             self.kinks(family.t3, &mut kinks);
             let mut i = 0;
@@ -435,7 +444,7 @@ impl SphericalPolygon {
     /// (`contains_local`), which sees the polygon its crossings see;
     /// otherwise [`SphericalPolygon::contains`] at [`ArcPoint::between`].
     pub fn lit_between(&self, band: &BandCircle, a: ArcPoint, b: ArcPoint) -> bool {
-        if !self.local || !(a.local.is_finite() || b.local.is_finite()) {
+        if !self.is_local() || !(a.local.is_finite() || b.local.is_finite()) {
             return self.contains(band.point(a.between(b)));
         }
         let end = |p: ArcPoint| {
@@ -490,7 +499,7 @@ impl SphericalPolygon {
         let narrow = band.family().narrow();
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
-            if self.local {
+            if self.is_local() {
                 let next = if m + 1 < self.count { m + 1 } else { 0 };
                 if next < MAX_VERTICES {
                     if narrow {
