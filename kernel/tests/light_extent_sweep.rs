@@ -201,11 +201,6 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
                 Cause::Other
             };
             let ratio = err / bound(kappa);
-            println!(
-                "ROW {index} {} {} {err:.3e} {ratio:.3}",
-                g.1.replace(" ", "_"),
-                r.d("alpha")
-            );
             writeln!(
                 dump,
                 "{},{:e},{:e},{:e},{err:e},{:e}",
