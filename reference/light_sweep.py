@@ -204,12 +204,17 @@ def antiderivative(w, q):
     return w * (mp.si(2 * x) - s2) / mp.pi
 
 
+def lit_chords(band, shape, lam_um):
+    """(q0, q1) in xi_2 (1/um) of each lit arc of `band` inside the light `shape`."""
+    for a, b in band.lit(shape):
+        yield ((band.rho * mp.sin(a) + band.wo_b) / lam_um,
+               (band.rho * mp.sin(b) + band.wo_b) / lam_um)
+
+
 def lit_sum(band, shape, w, lam_um):
     """sum_lit A(q1) - A(q0) along `band` inside the light `shape` (groove width w)."""
     total = mp.mpf(0)
-    for a, b in band.lit(shape):
-        q0 = (band.rho * mp.sin(a) + band.wo_b) / lam_um
-        q1 = (band.rho * mp.sin(b) + band.wo_b) / lam_um
+    for q0, q1 in lit_chords(band, shape, lam_um):
         total += antiderivative(w, q1) - antiderivative(w, q0)
     return total
 
@@ -231,9 +236,7 @@ def vgroove_sum(q, s, wo, reg, lam_um):
     band = Band(s, wo)
     ht = 2 * gamma(q, reg, wo) / lam_um
     total = mp.mpf(0)
-    for a, b in band.lit(reg[0]):
-        q0 = (band.rho * mp.sin(a) + band.wo_b) / lam_um
-        q1 = (band.rho * mp.sin(b) + band.wo_b) / lam_um
+    for q0, q1 in lit_chords(band, reg[0], lam_um):
         total += vgroove_band_sweep.band_integral(s["w"], s["d"], ht, q0, q1 - q0)
     return total
 
