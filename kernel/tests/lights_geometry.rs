@@ -293,7 +293,7 @@ fn small_sphere_chord_is_the_difference_of_the_roots() {
         // 0.7 of its angular radius.
         let s = (0.3 + 0.65 * next()) * if next() < 0.5 { -1.0 } else { 1.0 };
         let (c, rho) = (band.c as f64, band.rho as f64);
-        let (t3, b3) = (f64s(band.t3), f64s(band.b3));
+        let (t3, b3) = (f64s(band.family.t3), f64s(band.family.b3));
         let z = (1.0 - s * s).sqrt();
         let alpha = 10f64.powf(-5.0 + 3.0 * next());
         let off = 0.7 * alpha * (2.0 * next() - 1.0);
@@ -740,7 +740,10 @@ fn small_polygon_chords_keep_their_relative_accuracy() {
         // The kernel's band, normalised in f64.
         let (c, rho) = (band.c as f64, band.rho as f64);
         let (c, rho) = (c / c.hypot(rho), rho / c.hypot(rho));
-        let (t3, b3) = (normalise(f64s(band.t3)), normalise(f64s(band.b3)));
+        let (t3, b3) = (
+            normalise(f64s(band.family.t3)),
+            normalise(f64s(band.family.b3)),
+        );
         let s = 0.95 * (2.0 * next() - 1.0);
         let z = (1.0 - s * s).sqrt();
         let at = |s: f64, z: f64| -> [f64; 3] {

@@ -33,10 +33,8 @@ use glam::{Vec2, Vec3};
 /// The band of one scratch for one view direction.
 #[derive(Clone, Copy, Debug)]
 pub struct BandCircle {
-    /// `t₃ = (t, 0)`.
-    pub t3: Vec3,
-    /// `b₃ = (b, 0)`.
-    pub b3: Vec3,
+    /// The family of parallel bands it belongs to (`t₃`, `b₃`, `wo·t`, `wo·b`, `ρ₀²`).
+    pub family: BandFamily,
     /// `c = wi · t₃` on the band.
     pub c: f32,
     /// The offset `c − c₀` from the band's centre line, exact (`c` itself is rounded).
@@ -47,12 +45,8 @@ pub struct BandCircle {
     /// (~6e-8 near `|c| = 1/2`) keeps its shape across the bands only if each band is placed
     /// by its exact `offset` from this one ([`super::sphere::SphereCap::crossings`]).
     pub rho0: f32,
-    /// `ρ₀²` as formed, `(wo_xy · b)² + wo_z²`.
-    pub rho0_sq: f32,
     /// Radius `√(1 − c²)`.
     pub rho: f32,
-    /// `wo_xy · b`.
-    pub wo_b: f32,
 }
 
 /// The parallel bands of one scratch for one view, by their offset `o = (wi + wo)_xy · t`
@@ -106,7 +100,12 @@ impl BandCircle {
     /// The parallel line `(wi + wo)_xy · t = offset` (direction cosines, i.e. ξ₁ = offset/λ).
     #[inline]
     pub fn new_offset(tangent: Vec2, bitangent: Vec2, wo: Vec3, offset: f32) -> Option<BandCircle> {
-        let family = BandFamily::new(tangent, bitangent, wo);
+        BandCircle::of_family(BandFamily::new(tangent, bitangent, wo), offset)
+    }
+
+    /// The band of `family` at `offset`; `None` where it degenerates to a point or is empty.
+    #[inline]
+    pub fn of_family(family: BandFamily, offset: f32) -> Option<BandCircle> {
         let (wo_t, rho0_sq) = (family.wo_t, family.rho0_sq);
         let c = offset - wo_t;
         if !(c > -1.0 && c < 1.0) {
@@ -121,40 +120,25 @@ impl BandCircle {
             return None;
         }
         Some(BandCircle {
-            t3: family.t3,
-            b3: family.b3,
+            family,
             c,
             offset,
             c0: -wo_t,
             rho0: math::sqrt0(rho0_sq),
-            rho0_sq,
             rho,
-            wo_b: family.wo_b,
         })
-    }
-
-    /// The family the band belongs to ([`BandFamily`]).
-    #[inline]
-    pub fn family(&self) -> BandFamily {
-        BandFamily {
-            t3: self.t3,
-            b3: self.b3,
-            wo_t: -self.c0,
-            wo_b: self.wo_b,
-            rho0_sq: self.rho0_sq,
-        }
     }
 
     /// The direction at the point `p` of the upper half.
     #[inline]
     pub fn point(&self, p: ArcPoint) -> Vec3 {
-        self.c * self.t3 + self.rho * (p.s * self.b3 + p.z * Vec3::Z)
+        self.c * self.family.t3 + self.rho * (p.s * self.family.b3 + p.z * Vec3::Z)
     }
 
     /// `ξ₂` (1/µm) at `s`, for the wavelength `lambda` (µm).
     #[inline]
     pub fn xi2(&self, s: f32, lambda: f32) -> f32 {
-        (self.rho * s + self.wo_b) / lambda
+        (self.rho * s + self.family.wo_b) / lambda
     }
 
     /// `ξ₂(p1) − ξ₂(p0)` (1/µm) from `ds = s1 − s0` ([`ArcPoints::chord`]): the two `ξ₂`
@@ -167,7 +151,7 @@ impl BandCircle {
     /// Components `(m_t, m_b, m_z)` of a plane normal in the circle's frame.
     #[inline]
     pub fn components(&self, m: Vec3) -> (f32, f32, f32) {
-        (m.dot(self.t3), m.dot(self.b3), m.z)
+        (m.dot(self.family.t3), m.dot(self.family.b3), m.z)
     }
 
     /// Adds to `out` the (up to two) upper-half points where the circle meets the plane
@@ -204,18 +188,8 @@ impl BandCircle {
             let sgn = if k == 0 { 1.0 } else { -1.0 };
             let s = (g * mb + sgn * mz * root) / r2;
             let z = (g * mz - sgn * mb * root) / r2;
-            // Beyond |s| = 1/2, s from z: z places the point finer there (an ulp of s is
-            // 1/z times longer along the circle), and s then falls as z rises, so the order
-            // by s agrees with the order by z ([`ArcPoint::before`], [`ArcPoint::s_minus`]).
-            let s = if s > 0.5 {
-                math::sqrt0(1.0 - z * z)
-            } else if s < -0.5 {
-                -math::sqrt0(1.0 - z * z)
-            } else {
-                s
-            };
             if super::horizon::on_upper_half(z) {
-                pair[k] = ArcPoint::on_circle(s, z);
+                pair[k] = ArcPoint::crossing(s, z);
                 out.push(pair[k]);
                 upper += 1;
             }
@@ -309,6 +283,22 @@ impl ArcPoint {
         }
     }
 
+    /// A crossing found as `(s, z)`, [`ArcPoint::on_circle`] with `s` taken from `z` beyond
+    /// `|s| = 1/2`: `z` places the point finer there (an ulp of `s` is `1/z` times longer
+    /// along the circle), and `s` then falls as `z` rises, so the order by `s` agrees with
+    /// the order by `z` ([`ArcPoint::before`], [`ArcPoint::s_minus`]).
+    #[inline]
+    pub fn crossing(s: f32, z: f32) -> ArcPoint {
+        let s = if s > 0.5 {
+            math::sqrt0(1.0 - z * z)
+        } else if s < -0.5 {
+            -math::sqrt0(1.0 - z * z)
+        } else {
+            s
+        };
+        ArcPoint::on_circle(s, z)
+    }
+
     /// Whether `self` comes before `other` along the half circle (`φ` increasing): by `s`,
     /// and where two `s` round to the same value, by `z` (falling towards `s = 1`, rising
     /// from `s = −1`).
@@ -328,10 +318,19 @@ impl ArcPoint {
     /// (an ulp of 6e-8 there is an arc of 3.5e-4 rad), `z` its relative one.
     #[inline]
     pub fn s_minus(self, p0: ArcPoint) -> f32 {
+        self.s_minus_by(p0, p0.z - self.z, self.s - p0.s)
+    }
+
+    /// `self.s − p0.s` given `z_drop = p0.z − self.z` and `ds`, the plain difference, each
+    /// formed as finely as the caller can ([`ArcPoint::s_minus`]; a small polygon's local
+    /// coordinates, [`ArcPoints::chord`]): `z_drop (z0 + z)/(s0 + s)` where both lie on one
+    /// side beyond `|s| = 1/2`, else `ds`.
+    #[inline]
+    fn s_minus_by(self, p0: ArcPoint, z_drop: f32, ds: f32) -> f32 {
         if (self.s >= 0.5 && p0.s >= 0.5) || (self.s <= -0.5 && p0.s <= -0.5) {
-            (p0.z - self.z) * (p0.z + self.z) / (p0.s + self.s)
+            z_drop * (p0.z + self.z) / (p0.s + self.s)
         } else {
-            self.s - p0.s
+            ds
         }
     }
 
@@ -407,14 +406,10 @@ impl<const N: usize> ArcPoints<N> {
     #[inline]
     pub fn chord(&self, p0: ArcPoint, p1: ArcPoint) -> f32 {
         if p0.local.is_finite() && p1.local.is_finite() {
-            // As [`ArcPoint::s_minus`]: beyond |s| = 1/2 on one side, from the heights,
-            // whose difference the local form keeps (near the band's horizon end `s` moves
-            // only at second order along the band, and so does its local coordinate).
-            if (p1.s >= 0.5 && p0.s >= 0.5) || (p1.s <= -0.5 && p0.s <= -0.5) {
-                (p0.local_z - p1.local_z) * (p0.z + p1.z) / (p0.s + p1.s)
-            } else {
-                p1.local - p0.local
-            }
+            // Beyond |s| = 1/2 on one side from the heights, whose difference the local form
+            // keeps (near the band's horizon end `s` moves only at second order along the
+            // band, and so does its local coordinate).
+            p1.s_minus_by(p0, p0.local_z - p1.local_z, p1.local - p0.local)
         } else if p0 == self.pair[1] && p1 == self.pair[0] {
             self.pair_chord
         } else if p0 == self.pair[0] && p1 == self.pair[1] {

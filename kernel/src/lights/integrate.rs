@@ -252,9 +252,9 @@ impl LightRegion {
     /// sphere's cone where it holds `±u`).
     pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
         if LightKind::from_u32(self.kind) == LightKind::Polygon {
-            self.polygon.kinks(u, out)
+            self.polygon.kinks(u, 0.0, out)
         } else {
-            self.sphere.kinks(u, out)
+            self.sphere.kinks(u, 0.0, out)
         }
     }
 
@@ -265,13 +265,7 @@ impl LightRegion {
         if LightKind::from_u32(self.kind) == LightKind::Polygon {
             self.polygon.offset_kinks(family, out)
         } else {
-            let mut kinks = Breakpoints::empty();
-            self.sphere.kinks(family.t3, &mut kinks);
-            let mut i = 0;
-            while i < kinks.len && i < MAX_CUTS {
-                out.push(kinks.s[i] + family.wo_t);
-                i += 1;
-            }
+            self.sphere.kinks(family.t3, family.wo_t, out)
         }
     }
 
@@ -364,8 +358,9 @@ pub fn lit_intervals<V: FnMut(ArcPoint, ArcPoint, f32)>(
         // ([`SphericalPolygon::lit_between`]).
         let mut bp = ArcPoints::<MAX_BREAKPOINTS>::half_circle();
         let polygon = &region.polygon;
-        polygon.crossings(band, &mut bp);
-        bp.lit_intervals(|a, b| polygon.lit_between(band, a, b), visit);
+        let at = polygon.local_band(band);
+        polygon.crossings_with(band, &at, &mut bp);
+        bp.lit_intervals(|a, b| polygon.lit_between(band, &at, a, b), visit);
     } else {
         // A sphere decides its lit arcs by the numbers its crossings came from
         // ([`SphereCap::holds_on`]).

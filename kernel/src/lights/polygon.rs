@@ -283,25 +283,26 @@ impl SphericalPolygon {
     /// where a band `u · w = c` is tangent to an edge above the horizon ([`arc_stationary`]):
     /// a band curves more than a great circle, so it can touch an edge from inside the light
     /// anywhere in its range, and its lit chord opens like a square root there.
-    pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
+    /// Each value is added shifted by `shift` (`wo·t` for [`SphericalPolygon::offset_kinks`]).
+    pub fn kinks(&self, u: Vec3, shift: f32, out: &mut Breakpoints) {
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
             let next = if m + 1 < self.count { m + 1 } else { 0 };
             let a = self.vertex[m];
             if a.z >= 0.0 {
-                out.push(u.dot(a));
+                out.push(u.dot(a) + shift);
             }
             if next < MAX_VERTICES {
                 let b = self.vertex[next];
                 arc_stationary(a, b, u, |value, w| {
                     if w.z >= 0.0 {
-                        out.push(value);
+                        out.push(value + shift);
                     }
                 });
                 if (a.z > 0.0 && b.z < 0.0) || (a.z < 0.0 && b.z > 0.0) {
                     // On the great circle through a and b, between them, at z = 0.
                     let p = a * math::abs(b.z) + b * math::abs(a.z);
-                    out.push(u.dot(p.normalize_or_zero()));
+                    out.push(u.dot(p.normalize_or_zero()) + shift);
                 }
             }
             m += 1;
@@ -353,13 +354,7 @@ impl SphericalPolygon {
     /// [`kinks`]: SphericalPolygon::kinks
     pub fn offset_kinks(&self, family: &BandFamily, out: &mut Breakpoints) {
         if !self.is_local() {
-            let mut kinks = Breakpoints::empty();
-            self.kinks(family.t3, &mut kinks);
-            let mut i = 0;
-            while i < kinks.len && i < kinks.s.len() {
-                out.push(kinks.s[i] + family.wo_t);
-                i += 1;
-            }
+            self.kinks(family.t3, family.wo_t, out);
             return;
         }
         let mut m = 0;
@@ -431,11 +426,20 @@ impl SphericalPolygon {
         0.5 + along.dot(u) / (self.reference.dot(u) * along.length_squared())
     }
 
-    /// `r̂·t₃ − c`, the reference's height over the band: `c₀` and `r̂·t₃` are rounded once
-    /// for all bands (a shift of the whole light by ~ε), the exact offset `o` apart.
-    #[inline]
-    fn reference_height(&self, band: &BandCircle) -> f32 {
-        (self.reference.dot(band.t3) - band.c0) - band.offset
+    /// The reference direction `r̂` seen from `band` ([`LocalBand`]), formed once for the
+    /// band's crossings and the test of its arcs; zeros for a polygon not in local form.
+    pub fn local_band(&self, band: &BandCircle) -> LocalBand {
+        if !self.is_local() {
+            return LocalBand::default();
+        }
+        let r = self.reference;
+        let rb = r.dot(band.family.b3);
+        LocalBand {
+            height: (r.dot(band.family.t3) - band.c0) - band.offset,
+            rb,
+            s_ref: rb / band.rho,
+            z_ref: r.z / band.rho,
+        }
     }
 
     /// Whether the arc of `band` between its consecutive points `a` and `b` is lit: for a
@@ -443,7 +447,7 @@ impl SphericalPolygon {
     /// from `s = ±1`, `z = 0`) against the fan in local form
     /// (`contains_local`), which sees the polygon its crossings see;
     /// otherwise [`SphericalPolygon::contains`] at [`ArcPoint::between`].
-    pub fn lit_between(&self, band: &BandCircle, a: ArcPoint, b: ArcPoint) -> bool {
+    pub fn lit_between(&self, band: &BandCircle, at: &LocalBand, a: ArcPoint, b: ArcPoint) -> bool {
         if !self.is_local() || !(a.local.is_finite() || b.local.is_finite()) {
             return self.contains(band.point(a.between(b)));
         }
@@ -452,10 +456,7 @@ impl SphericalPolygon {
                 (p.local, p.local_z)
             } else {
                 // A horizon end (the only points without a local form here).
-                (
-                    p.s - self.reference.dot(band.b3) / band.rho,
-                    -self.reference.z / band.rho,
-                )
+                (p.s - at.s_ref, -at.z_ref)
             }
         };
         let ((ba, za), (bb, zb)) = (end(a), end(b));
@@ -468,10 +469,9 @@ impl SphericalPolygon {
         let root = math::sqrt(1.0 - x);
         let k = x / (root * (1.0 + root));
         let (mb, mz) = (0.5 * (ba + bb), 0.5 * (za + zb));
-        let rb = self.reference.dot(band.b3) / band.rho;
-        let rz = self.reference.z / band.rho;
-        let (mb, mz) = (mb + (rb + mb) * k, mz + (rz + mz) * k);
-        let e = band.t3 * (-self.reference_height(band)) + (band.b3 * mb + Vec3::Z * mz) * band.rho;
+        let (mb, mz) = (mb + (at.s_ref + mb) * k, mz + (at.z_ref + mz) * k);
+        let f = &band.family;
+        let e = f.t3 * (-at.height) + (f.b3 * mb + Vec3::Z * mz) * band.rho;
         self.contains_local(e)
     }
 
@@ -496,16 +496,21 @@ impl SphericalPolygon {
     /// narrow ones); otherwise on the whole
     /// circles ([`BandCircle::plane_crossings`]).
     pub fn crossings(&self, band: &BandCircle, out: &mut ArcPoints) {
-        let narrow = band.family().narrow();
+        self.crossings_with(band, &self.local_band(band), out);
+    }
+
+    /// [`SphericalPolygon::crossings`] with the band's [`LocalBand`] already formed.
+    pub fn crossings_with(&self, band: &BandCircle, at: &LocalBand, out: &mut ArcPoints) {
+        let narrow = band.family.narrow();
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
             if self.is_local() {
                 let next = if m + 1 < self.count { m + 1 } else { 0 };
                 if next < MAX_VERTICES {
                     if narrow {
-                        self.edge_crossings_narrow(band, self.edge[m], self.edge_k[m], out);
+                        self.edge_crossings_narrow(band, at, self.edge[m], self.edge_k[m], out);
                     } else {
-                        self.edge_crossings(band, self.offset[m], self.offset[next], out);
+                        self.edge_crossings(band, at, self.offset[m], self.offset[next], out);
                     }
                 }
             } else {
@@ -519,7 +524,7 @@ impl SphericalPolygon {
     /// [`LOCAL_TAU`]), in local form, for a wide band (`|c₀| ≤ ρ₀`, where an ulp of `c` moves
     /// the band by at most `√2 ε`). Along the arc `w(τ) = ((1 − τ) U_a + τ U_b)/N`
     /// ([`SphericalPolygon::local_point`]), and with `h = U·t₃ − c` the vertices' heights over
-    /// the band (`h_r + (U − r̂)·t₃`, `h_r` [`SphericalPolygon::reference_height`]), `w·t₃ = c`
+    /// the band (`h_r + (U − r̂)·t₃`, `h_r` [`LocalBand::height`]), `w·t₃ = c`
     /// is
     ///
     /// `h_a + τ (h_b − h_a) + c τ(1 − τ) L²/(1 + N) = 0`,
@@ -528,11 +533,19 @@ impl SphericalPolygon {
     /// heights of size `L`, below `εL` up to `L² = LOCAL_EXACT_N`; beyond, once more at the
     /// root's own `N` (leaving `L⁶/2048`, below `εL` up to `L = 0.1`, twice `LOCAL_MAX`). The
     /// kinks ([`SphericalPolygon::band_offset_of`]) take the same `h_r`.
-    fn edge_crossings(&self, band: &BandCircle, da: Vec3, db: Vec3, out: &mut ArcPoints) {
+    fn edge_crossings(
+        &self,
+        band: &BandCircle,
+        at: &LocalBand,
+        da: Vec3,
+        db: Vec3,
+        out: &mut ArcPoints,
+    ) {
         let along = db - da;
         let l2 = along.length_squared();
-        let ha = self.reference_height(band) + da.dot(band.t3);
-        let dh = along.dot(band.t3);
+        let t3 = band.family.t3;
+        let ha = at.height + da.dot(t3);
+        let dh = along.dot(t3);
         let roots = edge_roots(ha, dh, band.c * l2 * 0.5);
         let mut k = 0;
         while k < 2 {
@@ -546,28 +559,19 @@ impl SphericalPolygon {
             }
             if near_edge && tau >= LOCAL_TAU.0 && tau <= LOCAL_TAU.1 {
                 let e = self.local_point(da, db, tau).0;
-                self.push_local(band, e.dot(band.b3), e.z, out);
+                self.push_local(band, at, e.dot(band.family.b3), e.z, out);
             }
             k += 1;
         }
     }
 
     /// Adds the point `w = r̂ + e` of the band's upper half (`e_b = (w − r̂)·b₃`,
-    /// `e_z = (w − r̂)_z`), with its local coordinates.
+    /// `e_z = (w − r̂)_z`), with its local coordinates ([`ArcPoint::crossing`]).
     #[inline]
-    fn push_local(&self, band: &BandCircle, eb: f32, ez: f32, out: &mut ArcPoints) {
+    fn push_local(&self, band: &BandCircle, at: &LocalBand, eb: f32, ez: f32, out: &mut ArcPoints) {
         let z = (self.reference.z + ez) / band.rho;
         if super::horizon::on_upper_half(z) {
-            let s = (self.reference.dot(band.b3) + eb) / band.rho;
-            // Beyond |s| = 1/2, s from z, as [`BandCircle::plane_crossings`] does.
-            let s = if s > 0.5 {
-                math::sqrt0(1.0 - z * z)
-            } else if s < -0.5 {
-                -math::sqrt0(1.0 - z * z)
-            } else {
-                s
-            };
-            let mut p = ArcPoint::on_circle(s, z);
+            let mut p = ArcPoint::crossing((at.rb + eb) / band.rho, z);
             p.local = eb / band.rho;
             p.local_z = ez / band.rho;
             out.push(p);
@@ -579,33 +583,40 @@ impl SphericalPolygon {
     /// [`BandCircle::plane_crossings`] with every point written `w = r̂ + e`. The plane
     /// `(U_a × U_b)·w = 0` is `P·e + k = 0`, `P` its local-form `normal` and `k` its value at
     /// `r̂` (`local_planes`: small, each to its relative accuracy). On the band
-    /// `e_t = c − r̂·t₃` (the band's height, [`SphericalPolygon::reference_height`]), so the
+    /// `e_t = c − r̂·t₃` (the band's height, [`LocalBand::height`]), so the
     /// crossings are where the line `P_b e_b + P_z e_z = −(k + P_t e_t)` meets the circle
     /// `(r̂_b + e_b)² + (r̂_z + e_z)² = ρ²`, `ρ² = ρ₀² + o(2 wo·t − o)`, whose
     /// `ρ² − r̂_b² − r̂_z²` keeps [`SphericalPolygon::radius_excess`] as the kinks do. As in
     /// the band circle's own form, an ulp of `c` moves the band along `t₃` (by ~ερ across
     /// it), not across it by `ε/ρ` as the height form would (2e-6 rad on a band of radius
     /// 0.03).
-    fn edge_crossings_narrow(&self, band: &BandCircle, normal: Vec3, k: f32, out: &mut ArcPoints) {
+    fn edge_crossings_narrow(
+        &self,
+        band: &BandCircle,
+        at: &LocalBand,
+        normal: Vec3,
+        k: f32,
+        out: &mut ArcPoints,
+    ) {
         let r = self.reference;
         let (pt, pb, pz) = band.components(normal);
         let r2 = pb * pb + pz * pz;
         if !(r2 > 0.0) {
             return;
         }
-        let et = -self.reference_height(band);
+        let et = -at.height;
         let g = -(k + pt * et);
         // The line's point nearest `r̂` (`e = 0`), and its unit direction.
         let (e0b, e0z) = (g * pb / r2, g * pz / r2);
         let len = math::sqrt(r2);
         let (db_, dz_) = (-pz / len, pb / len);
-        let rb = r.dot(band.b3);
+        let rb = at.rb;
         let (xb, xz) = (rb + e0b, r.z + e0z);
         // λ² + 2 B λ + C = 0 along the line.
         let bq = db_ * xb + dz_ * xz;
         let o = band.offset;
-        let wo_t = band.family().wo_t;
-        let cq = (self.radius_excess(rb, band.rho0_sq) - o * (2.0 * wo_t - o))
+        let wo_t = band.family.wo_t;
+        let cq = (self.radius_excess(rb, band.family.rho0_sq) - o * (2.0 * wo_t - o))
             + (2.0 * (rb * e0b + r.z * e0z) + (e0b * e0b + e0z * e0z));
         let disc = bq * bq - cq;
         if !(disc >= 0.0) {
@@ -616,7 +627,7 @@ impl SphericalPolygon {
         let mut i = 0;
         while i < 2 {
             let lambda = roots[i];
-            self.push_local(band, e0b + lambda * db_, e0z + lambda * dz_, out);
+            self.push_local(band, at, e0b + lambda * db_, e0z + lambda * dz_, out);
             i += 1;
         }
     }
@@ -630,6 +641,22 @@ fn direction_offset(p: Vec3, p0: Vec3) -> Vec3 {
     let delta = p - p0;
     let (n, n0) = (p.length(), p0.length());
     delta * (1.0 / n) - p0 * (delta.dot(p + p0) / (n * n0 * (n + n0)))
+}
+
+/// A small polygon's reference direction `r̂` seen from one band
+/// ([`SphericalPolygon::local_band`]): the numbers its crossings and the test of its arcs
+/// share, formed once per band.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LocalBand {
+    /// `r̂·t₃ − c`, the reference's height over the band: `c₀` and `r̂·t₃` are rounded once
+    /// for all bands (a shift of the whole light by ~ε), the exact offset `o` apart.
+    pub height: f32,
+    /// `r̂·b₃`.
+    pub rb: f32,
+    /// `r̂·b₃/ρ`, the reference's `s`.
+    pub s_ref: f32,
+    /// `r̂_z/ρ`, the reference's `z`.
+    pub z_ref: f32,
 }
 
 /// The union of two ranges.

@@ -181,14 +181,15 @@ impl SphereCap {
     /// `−u` or `u`, so that the circles around it lie wholly inside up to `cos(θ ± α)`, the
     /// tangency beyond the pole; [`SphereCap::dot_range`]'s ends are the other tangencies)
     /// and at the (up to two) points where the cone's boundary meets the horizon.
-    pub fn kinks(&self, u: Vec3, out: &mut Breakpoints) {
+    /// Each value is added shifted by `shift` (`wo·t` for the offsets of a band family).
+    pub fn kinks(&self, u: Vec3, shift: f32, out: &mut Breakpoints) {
         if self.alpha < math::PI {
             let t = self.tangents(u);
             if t.holds_minus_u {
-                out.push(t.m_t + t.far);
+                out.push((t.m_t + t.far) + shift);
             }
             if t.holds_u {
-                out.push(t.m_t + t.near);
+                out.push((t.m_t + t.near) + shift);
             }
         }
         // The boundary meets the horizon at azimuths `φ ± δ` from the axis's own, `cos δ =
@@ -211,7 +212,7 @@ impl SphereCap {
         let mut k = 0;
         while k < 2 {
             let (sin_p, cos_p) = math::sin_cos(if k == 0 { phi + delta } else { phi - delta });
-            out.push(u.x * cos_p + u.y * sin_p);
+            out.push((u.x * cos_p + u.y * sin_p) + shift);
             k += 1;
         }
     }
