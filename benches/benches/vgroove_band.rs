@@ -1,6 +1,6 @@
 //! Cost of the V-groove band integral (`lights::integrate::across_integral`,
 //! `Profile::Triangle`) against the number of lobes `W·|len|` its chord covers: 4 panels a
-//! lobe, at most `MAX_PANELS` (the cap was 64 panels, i.e. 16 lobes, until its domain sweep
+//! lobe (`triangle_panels`), at most `MAX_PANELS` (the cap was 64 panels, i.e. 16 lobes, until its domain sweep
 //! found chords over 16 lobes up to 35 % off; `docs/stability.md`).
 //!
 //! `cargo bench -p scratchwave-benches --bench vgroove_band`: ns per call, single thread,
@@ -8,7 +8,7 @@
 //! fastest of 9 passes), and the same per panel.
 
 use scratchwave_kernel::lights::SiMode;
-use scratchwave_kernel::lights::integrate::{Across, MAX_PANELS, across_integral};
+use scratchwave_kernel::lights::integrate::{Across, across_integral, triangle_panels};
 use scratchwave_kernel::scratch::Profile;
 use std::time::Instant;
 
@@ -45,7 +45,7 @@ fn main() {
     println!("|---|---|---|---|");
     for lobes in [0.25f32, 1.0, 4.0, 16.0, 64.0, 256.0, 512.0] {
         let len = lobes / WIDTH_UM;
-        let panels = ((len * WIDTH_UM * 4.0 + 1.0) as u32).clamp(1, MAX_PANELS);
+        let panels = triangle_panels(WIDTH_UM, len);
         let ns = (0..9)
             .map(|_| pass(&a, &starts, len))
             .fold(f64::MAX, f64::min);

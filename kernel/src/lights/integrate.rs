@@ -450,6 +450,20 @@ pub const MAX_PANELS: u32 = 2048;
 /// sum grows like `PANEL_BLOCK + panels/PANEL_BLOCK` rather than like the panel count.
 pub const PANEL_BLOCK: u32 = 64;
 
+/// The panels of the V-groove quadrature over a chord of length `len` (1/µm) of a groove
+/// `width` µm wide: no wider than a quarter of the sinc lobe spacing `1/W`, 1 to
+/// [`MAX_PANELS`].
+#[inline]
+pub fn triangle_panels(width: f32, len: f32) -> u32 {
+    let want = math::abs(len) * width * 4.0 + 1.0;
+    let panels = if want < MAX_PANELS as f32 {
+        want as u32
+    } else {
+        MAX_PANELS
+    };
+    if panels == 0 { 1 } else { panels }
+}
+
 /// `∫_{q0}^{q0 + len} |M − P|²(ξ₂) dξ₂` (µm² · 1/µm), the length passed apart from the start
 /// (see [`band_integral_len`]).
 pub fn across_integral(a: &Across, q0: f32, len: f32) -> f32 {
@@ -461,14 +475,7 @@ pub fn across_integral(a: &Across, q0: f32, len: f32) -> f32 {
             depth2 * band_integral_len(a.width, q0, len, a.si)
         }
         Profile::Triangle => {
-            // Panels no wider than a quarter of the sinc lobe spacing 1/W.
-            let want = math::abs(len) * a.width * 4.0 + 1.0;
-            let panels = if want < MAX_PANELS as f32 {
-                want as u32
-            } else {
-                MAX_PANELS
-            };
-            let panels = if panels == 0 { 1 } else { panels };
+            let panels = triangle_panels(a.width, len);
             let h = len / panels as f32;
             let mut total = 0.0;
             let mut p = 0;
