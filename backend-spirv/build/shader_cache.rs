@@ -97,7 +97,10 @@ pub fn outside_inputs(depfile: &Path, workspace: &Path) -> Result<Vec<String>, S
             for dep in split_escaped(deps) {
                 // rustc writes workspace members' files relative to the workspace.
                 let path = workspace.join(&dep);
-                if dep.ends_with(".rlib") || dep.ends_with(".rmeta") {
+                if is_library(&dep) {
+                    // A compiled library (a proc macro is a shared object) is a build
+                    // output, wherever the target directory lies: what it was built from
+                    // is in the dep-info beside it.
                     pending.extend(depfiles_beside(&path));
                 } else if path.starts_with(workspace)
                     && !covered.iter().any(|c| path.starts_with(c))
@@ -108,6 +111,14 @@ pub fn outside_inputs(depfile: &Path, workspace: &Path) -> Result<Vec<String>, S
         }
     }
     Ok(outside.into_iter().collect())
+}
+
+/// Whether a dep-info entry is a compiled library: an `rlib`, `rmeta` or a shared object
+/// (proc macros, the codegen backend).
+fn is_library(dep: &str) -> bool {
+    [".rlib", ".rmeta", ".so", ".dylib", ".dll"]
+        .iter()
+        .any(|ext| dep.ends_with(ext))
 }
 
 /// The dep-info files in the directory of a compiled library.

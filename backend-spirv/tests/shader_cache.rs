@@ -212,6 +212,42 @@ fn a_workspace_file_outside_the_key_is_reported() {
 }
 
 #[test]
+fn a_proc_macro_built_inside_the_workspace_is_followed_not_reported() {
+    // A checkout whose target directory lies inside it: the shader's dependencies list the
+    // proc macros they were expanded by, as shared objects under `target/`.
+    let dir = scratch_dir("depinfo-proc-macro");
+    let out = dir.join("target/spirv-builder/release/build/derive/1/out");
+    fs::create_dir_all(&out).unwrap();
+    let so = out.join("libderive-1.so");
+    fs::write(&so, b"").unwrap();
+    fs::write(
+        out.join("derive-1.d"),
+        format!(
+            "{0}: /registry/derive/src/lib.rs {1}/render/src/macro_input.rs\n",
+            so.display(),
+            dir.display()
+        ),
+    )
+    .unwrap();
+    let top = dir.join("shader.d");
+    fs::write(
+        &top,
+        format!(
+            "{0}/shader.spv: backend-spirv/shader/src/lib.rs {1}\n",
+            dir.display(),
+            so.display()
+        ),
+    )
+    .unwrap();
+    let outside = shader_cache::outside_inputs(&top, &dir).unwrap();
+    // The library itself is a build output; a workspace source it was built from is not
+    // covered by the key and is still reported.
+    let input = format!("{}/render/src/macro_input.rs", dir.display());
+    assert_eq!(outside, [input.as_str()]);
+    fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
 fn a_stored_module_is_found_by_its_key_and_old_entries_are_evicted() {
     let dir = scratch_dir("store");
     let module = dir.join("built.spv");
