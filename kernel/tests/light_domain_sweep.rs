@@ -17,9 +17,12 @@
 //!   of that.
 //!
 //! Asserted: `err ≤ max(1e-4, K_LIGHT·max(κ, κs))` (`sweep_common::K_LIGHT`) for every
-//! query, and against the inputs alone, `max(1e-4, 8κ)` (the rule of the other sweeps,
-//! which the kernel does not meet everywhere yet, see `docs/stability.md` *Area lights*),
-//! at most [`RATCHET_OVER_8K`] of the committed queries over. Exact values below
+//! query, and against the inputs alone, `max(1e-4, 8κ)` (the rule of the other sweeps) for
+//! every committed query: since a sphere's angle to the band is formed in two-fold
+//! precision (4 spheres below 1e-3 rad were over it before, up to 3.25×; 6 and the found
+//! near miss before a small polygon crossed the bands in local form; 225 before the band
+//! circle kept `cos φ`). Further samples still find polygons over it (`docs/stability.md`
+//! *Area lights*), so there it is reported, not asserted. Exact values below
 //! 1e-30 (lights the band misses) must come out below 1e-30 too, or, where moving one input
 //! by 16 ulps would light the band (the row's `reach`), at most that much
 //! (`sweep_common::light_err`); the inputs' report keeps the plain `< 1e-30`.
@@ -31,7 +34,7 @@
 //! The committed subset (`reference/golden/sweep/light.csv`), the queries larger samples
 //! found over the bound (`light_found.csv`, `light_sweep.py --found`) and the subset's lights
 //! and views with V grooves (`light_vgroove.csv`, `light_sweep.py --vgroove`, its own groups
-//! and ratchet; `LIGHT_VGROOVE_SWEEP_DIR` for a further sample) run by default; a larger
+//! and assertions; `LIGHT_VGROOVE_SWEEP_DIR` for a further sample) run by default; a larger
 //! sample (`python3 reference/light_sweep.py --count N --seed-offset K --out DIR`) with
 //! `LIGHT_SWEEP_DIR=DIR`. `LIGHT_SWEEP_DUMP=FILE` writes every query's kind, angular
 //! radius, elevation, distance, and its error under and bound of each rule for the
@@ -51,18 +54,6 @@ use sweep_common::{
 
 /// The committed subset's size (the test refuses fewer).
 const MIN_QUERIES: usize = 1500;
-
-/// Not a bound: the committed rectangular-groove queries' count over `max(1e-4, 8κ)`
-/// (`light.csv` and `light_found.csv`), so that a change can only lower it: 4 of the subset,
-/// spheres below 1e-3 rad, since a small polygon crosses the bands in local form (before,
-/// 6 and the found near miss, an exact 0 there; 14 before arc ends beyond `|s| = 1/2` took
-/// `s` from `cos φ` and a plane's two crossings the difference of their roots; 225 before
-/// the band circle kept `cos φ`).
-const RATCHET_OVER_8K: usize = 4;
-
-/// The same for the V-groove queries (`light_vgroove.csv`, the subset's lights and views):
-/// the same 4 spheres.
-const RATCHET_OVER_8K_VGROOVE: usize = 4;
 
 /// The kernel's value of one row.
 fn kernel_value(r: &Row) -> f32 {
@@ -123,15 +114,19 @@ fn light_integral_is_within_its_bound_over_the_domain() {
         std::fs::write(&path, dump).unwrap();
     }
     println!("against max(1e-4, 8κ), κ the inputs' one-ulp conditioning:");
-    report(&strict, 34);
-    let over_8k = |vgroove: bool| -> usize {
-        strict
-            .iter()
-            .filter(|((_, name), _)| name.starts_with("V groove") == vgroove)
-            .map(|(_, s)| s.over)
-            .sum()
-    };
-    let (over_8k, over_8k_vgroove) = (over_8k(false), over_8k(true));
+    let bad_8k = report(&strict, 34);
+    // A further sample's groups are reported, not asserted, against this bound.
+    let vgroove_sample = std::env::var_os("LIGHT_VGROOVE_SWEEP_DIR").is_some();
+    let bad_8k: Vec<&String> = bad_8k
+        .iter()
+        .filter(|line| {
+            if line.starts_with("V groove") {
+                !vgroove_sample
+            } else {
+                !sample
+            }
+        })
+        .collect();
     println!("against max(1e-4, 16·max(κ, κs)), κs the band parameter's one-ulp resolution:");
     let bad = report(&stats, 34);
     println!(
@@ -139,15 +134,13 @@ fn light_integral_is_within_its_bound_over_the_domain() {
          16-ulp reach"
     );
     assert!(bad.is_empty(), "over the bound:\n{}", bad.join("\n"));
-    // The count is the committed subset's; a further sample only prints it.
     assert!(
-        sample || over_8k <= RATCHET_OVER_8K,
-        "{over_8k} queries over max(1e-4, 8κ), more than the {RATCHET_OVER_8K} measured"
-    );
-    assert!(
-        std::env::var_os("LIGHT_VGROOVE_SWEEP_DIR").is_some()
-            || over_8k_vgroove <= RATCHET_OVER_8K_VGROOVE,
-        "{over_8k_vgroove} V-groove queries over max(1e-4, 8κ), more than the \
-         {RATCHET_OVER_8K_VGROOVE} measured"
+        bad_8k.is_empty(),
+        "committed queries over max(1e-4, 8κ):\n{}",
+        bad_8k
+            .iter()
+            .map(|line| line.as_str())
+            .collect::<Vec<_>>()
+            .join("\n")
     );
 }

@@ -63,6 +63,8 @@ pub struct BandFamily {
     pub wo_b: f32,
     /// `ρ₀² = (wo_xy · b)² + wo_z²`, the centre line's `1 − c₀²` without cancellation.
     pub rho0_sq: f32,
+    /// The view `wo` (unit), from which the above are formed.
+    pub wo: Vec3,
 }
 
 impl BandFamily {
@@ -85,6 +87,7 @@ impl BandFamily {
             wo_t: wo_xy.dot(tangent),
             wo_b,
             rho0_sq: wo_b * wo_b + wo.z * wo.z,
+            wo,
         }
     }
 }

@@ -14,8 +14,9 @@
 //! the cancellation of `cos β − cos α` that makes the printed quadratic (Eq. 34) lose all
 //! f32 digits for lights below ~1e-3 rad.
 
-use super::band_circle::{ArcPoint, ArcPoints, BandCircle, Breakpoints};
+use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints};
 use crate::math;
+use crate::math::twofold;
 use glam::{Vec2, Vec3};
 
 gpu_enum! {
@@ -228,10 +229,10 @@ impl SphereCap {
     /// bands of one scratch and view, so its rounding moves the whole light and leaves its
     /// shape alone; at `offset = 0`, `B = 0`.
     fn band_angles(&self, band: &BandCircle) -> (f32, f32, f32, f32, f32) {
-        let (mt, mb, mz) = band.components(self.axis);
+        let (mb, mz) = (self.axis.dot(band.family.b3), self.axis.z);
         let r = math::sqrt(mb * mb + mz * mz);
         let (c0, rho0) = (band.c0, band.rho0);
-        let a = math::atan2(r * c0 - mt * rho0, mt * c0 + r * rho0);
+        let a = self.axis_angle(&band.family);
         let b = if band.offset == 0.0 {
             0.0
         } else {
@@ -239,6 +240,29 @@ impl SphereCap {
             math::atan2(sin_b, c0 * band.c + rho0 * band.rho)
         };
         (a, b, mb, mz, r)
+    }
+
+    /// `A = θ_d − θ₀`, the angle from the band family's centre line to the cone's axis
+    /// (`SphereCap::band_angles`): `atan2(R c₀ − m_t ρ₀, m_t c₀ + R ρ₀)` with the sine's
+    /// four factors (`m_t = d̂·t₃`, `R = |d̂ × t₃|`, `c₀ = −wo·t₃`, `ρ₀ = |wo × t₃|`) and its
+    /// two products in [`twofold::Twofold`] precision from the `f32` axis, view and tangent. In `f32`
+    /// the sine, a difference of two products near 1/2, kept ~6e-8 rad of absolute
+    /// accuracy, while one ulp of an input can move the light by less than 1e-8 rad: a band
+    /// crossing a light below ~1e-3 rad near its edge magnifies that, 4.7e-4 of a
+    /// 9.3e-5-rad sphere's power (`reference/light_sweep.py`, rows 462 and 464 of the
+    /// committed subset).
+    fn axis_angle(&self, family: &BandFamily) -> f32 {
+        let (d, t, b, wo) = (self.axis, family.t3, family.b3, family.wo);
+        let mt = twofold::dot2(d.x, t.x, d.y, t.y);
+        let mb = twofold::dot2(d.x, b.x, d.y, b.y);
+        let r = (mb * mb + twofold::two_prod(d.z, d.z)).sqrt();
+        let wo_t = twofold::dot2(wo.x, t.x, wo.y, t.y);
+        let wo_b = twofold::dot2(wo.x, b.x, wo.y, b.y);
+        let rho0 = (wo_b * wo_b + twofold::two_prod(wo.z, wo.z)).sqrt();
+        // c₀ = −wo·t₃: sin A = −(R wo_t + m_t ρ₀), cos A = R ρ₀ − m_t wo_t.
+        let sin_a = -(r * wo_t + mt * rho0).value();
+        let cos_a = r.hi * rho0.hi - mt.hi * wo_t.hi;
+        math::atan2(sin_a, cos_a)
     }
 
     /// How far the band reaches into the cone, in the circle's own terms: the band meets the

@@ -44,6 +44,7 @@ pub const FRAC_1_SQRT_PI: f32 = 0.564_189_583_547_756_3;
 
 pub mod portable;
 pub mod quadrature;
+pub mod twofold;
 
 use crate::lane::Real;
 
