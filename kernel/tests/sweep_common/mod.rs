@@ -374,11 +374,13 @@ pub fn footprint_inputs(r: &Row) -> (Scratch, Ellipse, f32) {
 
 /// The multiple of `max(κ, κs)` a result may be off by. Where a band crosses a light near
 /// its edge, the chord hinges on the angle `β` between the light's centre and the band
-/// circle, which the kernel forms from the normalised centre, three dot products, the
+/// circle, which the kernel formed from the normalised centre, three dot products, the
 /// band's `c` and `ρ` and one `atan2`, each rounded to about an ulp of an O(1) quantity,
 /// while `κ` moves one input by one ulp, which moves `β` by as little as a tenth of that:
 /// measured worst `err/max(κ, κs)` 9.4 on the committed subset (a band 1.6e-7 rad inside
-/// the edge of a 7.8e-5-rad sphere).
+/// the edge of a 7.8e-5-rad sphere). With that angle in two-fold precision
+/// (`SphereCap::axis_angle`) the worst is 3.3; 16 stays until larger samples and the SPIR-V
+/// backend have been measured against 8.
 pub const K_LIGHT: f64 = 16.0;
 
 /// The light sweep's tables: the committed subset (or `LIGHT_SWEEP_DIR`'s sample) first;
