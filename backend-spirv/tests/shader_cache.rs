@@ -181,32 +181,39 @@ fn the_lock_tree_is_the_shaders_dependencies_without_dev_dependencies() {
     assert_eq!(kernel_dev, ["serde_json", "proptest"]);
 }
 
+/// An empty library file `lib` (its directories made) and the dep-info `depfile` beside it
+/// that lists `deps` as what it was built from.
+fn library_with_depinfo(lib: &Path, depfile: &Path, deps: &str) {
+    fs::create_dir_all(lib.parent().unwrap()).unwrap();
+    fs::write(lib, b"").unwrap();
+    fs::write(depfile, format!("{}: {deps}\n", lib.display())).unwrap();
+}
+
+/// The shader's dep-info in `dir`, listing `deps`; [`shader_cache::outside_inputs`] of it.
+fn outside_inputs_of_shader(dir: &Path, deps: &str) -> Vec<String> {
+    let top = dir.join("shader.d");
+    fs::write(&top, format!("{}/shader.spv: {deps}\n", dir.display())).unwrap();
+    shader_cache::outside_inputs(&top, dir).unwrap()
+}
+
 #[test]
 fn a_workspace_file_outside_the_key_is_reported() {
     let dir = scratch_dir("depinfo");
     let lib = dir.join("deps/libdep-1.rlib");
-    fs::create_dir_all(lib.parent().unwrap()).unwrap();
-    fs::write(&lib, b"").unwrap();
-    fs::write(
-        dir.join("deps/dep-1.d"),
-        format!(
-            "{0}/deps/libdep-1.rlib: kernel/src/lib.rs {0}/render/src/scene.rs /usr/lib/x.rs\n",
-            dir.display()
-        ),
-    )
-    .unwrap();
-    let top = dir.join("shader.d");
-    fs::write(
-        &top,
-        format!(
-            "{0}/shader.spv: backend-spirv/shader/src/lib.rs host/src/with\\ space.rs {1}\n",
-            dir.display(),
+    let d = dir.display();
+    library_with_depinfo(
+        &lib,
+        &dir.join("deps/dep-1.d"),
+        &format!("kernel/src/lib.rs {d}/render/src/scene.rs /usr/lib/x.rs"),
+    );
+    let outside = outside_inputs_of_shader(
+        &dir,
+        &format!(
+            "backend-spirv/shader/src/lib.rs host/src/with\\ space.rs {}",
             lib.display()
         ),
-    )
-    .unwrap();
-    let outside = shader_cache::outside_inputs(&top, &dir).unwrap();
-    let render = format!("{}/render/src/scene.rs", dir.display());
+    );
+    let render = format!("{d}/render/src/scene.rs");
     assert_eq!(outside, [render.as_str(), "host/src/with space.rs"]);
     fs::remove_dir_all(dir).unwrap();
 }
@@ -217,29 +224,19 @@ fn a_proc_macro_built_inside_the_workspace_is_followed_not_reported() {
     // proc macros they were expanded by, as shared objects under `target/`.
     let dir = scratch_dir("depinfo-proc-macro");
     let out = dir.join("target/spirv-builder/release/build/derive/1/out");
-    fs::create_dir_all(&out).unwrap();
     let so = out.join("libderive-1.so");
-    fs::write(&so, b"").unwrap();
-    fs::write(
-        out.join("derive-1.d"),
-        format!(
-            "{0}: /registry/derive/src/lib.rs {1}/render/src/macro_input.rs\n",
-            so.display(),
+    library_with_depinfo(
+        &so,
+        &out.join("derive-1.d"),
+        &format!(
+            "/registry/derive/src/lib.rs {}/render/src/macro_input.rs",
             dir.display()
         ),
-    )
-    .unwrap();
-    let top = dir.join("shader.d");
-    fs::write(
-        &top,
-        format!(
-            "{0}/shader.spv: backend-spirv/shader/src/lib.rs {1}\n",
-            dir.display(),
-            so.display()
-        ),
-    )
-    .unwrap();
-    let outside = shader_cache::outside_inputs(&top, &dir).unwrap();
+    );
+    let outside = outside_inputs_of_shader(
+        &dir,
+        &format!("backend-spirv/shader/src/lib.rs {}", so.display()),
+    );
     // The library itself is a build output; a workspace source it was built from is not
     // covered by the key and is still reported.
     let input = format!("{}/render/src/macro_input.rs", dir.display());
