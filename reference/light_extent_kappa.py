@@ -15,11 +15,16 @@ length, the shading point, the depth) changes only that scratch's factor P_k or 
 that moves a band or the light, or sigma (which sets the band's standard deviation),
 takes the scratch's window quadrature again.
 
-Usage: python3 reference/light_extent_kappa.py --rows I,J,... [--dir DIR] [--jobs N]
-Reads DIR/light_extent.csv (default reference/golden/sweep/), where row 0 is the first
-query after the header, and writes DIR/light_extent_kappa.csv (`row,kappa,window`,
-`window` the recomputed exact value as a check), keeping the rows already there that
-were not asked for again.
+A V groove's depth is inside its chord integral (`light_sweep.neighbours` moves it as an
+`l` input), and its depth phase follows the light's centre and wo as the kernel's does
+(`light_extent_sweep.depth_phase`), so those neighbours take the quadrature again.
+
+Usage: python3 reference/light_extent_kappa.py [--vgroove] --rows I,J,... [--dir DIR] [--jobs N]
+Reads DIR/light_extent.csv (default reference/golden/sweep/; with --vgroove
+DIR/light_extent_vgroove.csv), where row 0 is the first query after the header, and writes
+DIR/light_extent_kappa.csv (light_extent_vgroove_kappa.csv) (`row,kappa,window`, `window`
+the recomputed exact value as a check), keeping the rows already there that were not asked
+for again.
 """
 import argparse
 import csv
@@ -49,6 +54,7 @@ class Window:
         p.q, p.wo, p.reg, p.lam = q, ls.unit(q["wo"]), ls.region(q), mp.mpf(q["lambda_nm"]) / 1000
         sig = mp.mpf(q["sigma"])
         self.sd = p.lam / (2 * mp.sqrt(2) * mp.pi * sig)
+        self.ht = les.depth_phase(q, p)
         n = len(q["scratches"])
         every = set(range(n))
         redo = redo or {"p": every, "d": every, "g": every}
@@ -61,7 +67,7 @@ class Window:
         if self.parts.reg is None:
             return mp.mpf(0)
         _, _, win, _ = les.gaussian_integral(s, self.parts.wo, self.parts.reg[0], self.parts.lam, self.sd,
-                                             x_max=les.X_KERNEL)
+                                             x_max=les.X_KERNEL, ht=self.ht)
         return win
 
     def total(self):
@@ -101,14 +107,16 @@ def main():
     ap.add_argument("--rows", required=True, help="comma-separated row indices (0 = first query)")
     ap.add_argument("--dir", default=DEFAULT_DIR)
     ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--vgroove", action="store_true", help="the V-groove table (light_extent_vgroove.csv)")
     args = ap.parse_args()
-    with open(os.path.join(args.dir, "light_extent.csv")) as fh:
+    family = "light_extent_vgroove" if args.vgroove else "light_extent"
+    with open(os.path.join(args.dir, family + ".csv")) as fh:
         table = list(csv.DictReader(fh))
     wanted = sorted({int(i) for i in args.rows.split(",") if i.strip()})
     bad = [i for i in wanted if not 0 <= i < len(table)]
     if bad:
         sys.exit(f"--rows: {bad} outside 0..{len(table) - 1}")
-    out = os.path.join(args.dir, "light_extent_kappa.csv")
+    out = os.path.join(args.dir, family + "_kappa.csv")
     kept = {}
     if os.path.exists(out):
         with open(out) as fh:

@@ -37,7 +37,17 @@ the share of the whole value from beyond, is the model's error from the window.
 No conditioning is computed: one query's kappa would need ~50 further quadratures
 (`kernel/tests/light_extent_sweep.rs`, `docs/stability.md` *Area lights*).
 
-Usage: python3 reference/light_extent_sweep.py [--count N] [--seed-offset K] [--out DIR]
+`--vgroove` draws the same queries (same seed and sequence) with every scratch a V groove
+(profile 1) and writes DIR/light_extent_vgroove.csv (default 200 queries). The chord at
+offset o is then sum_lit int_{q0}^{q1} |M - P|^2 dq (`light_sweep.vgroove_sum` on the
+offset band, `vgroove_band_sweep.band_integral`), with the depth inside it (D2_k = 1), at
+the depth phase 2 gamma / lambda of the one gamma the kernel takes for every band, at the
+light's centre direction (`light_integrals_in`). |M - P|^2 is entire in q, so L(o) kinks
+only where the lit chords' ends do, at the rectangular groove's geometric kinks above; its
+peaks (W q = 0, +-D ht) are smooth and left to the halving. A chord's whole quarter-lobe
+cells are cached (`VgrooveChord`). The committed subset: 200 queries, 808 s on one core.
+
+Usage: python3 reference/light_extent_sweep.py [--vgroove] [--count N] [--seed-offset K] [--out DIR]
 Writes DIR/light_extent.csv (default reference/golden/sweep/): `light_sweep.py`'s columns
 without kappa, kappa_s and reach, plus `single`, the same query's exact single-band value,
 `tail`, the share of the exact value that comes from bands beyond 4.5 standard deviations
@@ -50,6 +60,7 @@ import mpmath as mp
 import numpy as np
 
 import light_sweep as ls
+import vgroove_band_sweep
 from sweep_io import parse_args, progress, write_csv
 
 mp.mp.dps = 30
@@ -72,16 +83,69 @@ class OffsetBand(ls.Band):
         self.rho = mp.sqrt(1 - self.c * self.c) if abs(self.c) < 1 else mp.mpf(0)
 
 
-def chord(s, wo, reg, lam_um, o):
+# A V-groove chord over fewer whole cells than this is integrated as it stands.
+SHORT_CELLS = 4
+
+
+class VgrooveChord:
+    """int_{q0}^{q1} |M - P|^2 dq of one V groove (W, D, depth phase ht) by
+    `vgroove_band_sweep.band_integral` on the grid of its own piece width, q = k/(4W): the
+    whole cells a chord covers come from a cache, its two ends are integrated anew, so a
+    band costs two pieces however many lobes its chord covers. Called at one precision (the
+    chord's), which the cells keep."""
+
+    def __init__(self, w, d, ht):
+        self.w, self.d, self.ht = w, d, ht
+        self.cells = {}
+
+    def piece(self, a, b):
+        return vgroove_band_sweep.band_integral(self.w, self.d, self.ht, a, b - a)
+
+    def cell(self, k, h):
+        if k not in self.cells:
+            self.cells[k] = self.piece(k * h, (k + 1) * h)
+        return self.cells[k]
+
+    def __call__(self, q0, q1):
+        sign = 1
+        if q1 < q0:
+            q0, q1, sign = q1, q0, -1
+        h = 1 / (vgroove_band_sweep.PIECES_PER_LOBE * mp.mpf(self.w))
+        k0, k1 = int(mp.floor(q0 / h)) + 1, int(mp.floor(q1 / h))
+        if k1 - k0 < SHORT_CELLS:
+            return sign * self.piece(q0, q1)
+        total = self.piece(q0, k0 * h) + self.piece(k1 * h, q1)
+        for k in range(k0, k1):
+            total += self.cell(k, h)
+        return sign * total
+
+
+def chord(s, wo, reg, lam_um, o, vg=None):
     """L(o) = sum_lit A(q1) - A(q0) along the band at offset o, at twice the working
     precision: the quadrature's nodes crowd within ~10^-dps of a kink, where a lit chord
-    is that short and A(q1) - A(q0) cancels that many digits."""
+    is that short and A(q1) - A(q0) cancels that many digits. With `vg` (a V groove's
+    `VgrooveChord`), sum_lit int_{q0}^{q1} |M - P|^2 dq, as `light_sweep.vgroove_sum` on
+    the offset band."""
     with mp.workdps(2 * mp.mp.dps):
         band = OffsetBand(s, wo, o)
         if band.rho == 0:
             return mp.mpf(0)
-        total = ls.lit_sum(band, reg, mp.mpf(s["w"]), lam_um)
+        if vg is None:
+            total = ls.lit_sum(band, reg, mp.mpf(s["w"]), lam_um)
+        else:
+            total = mp.mpf(0)
+            for q0, q1 in ls.lit_chords(band, reg, lam_um):
+                total += vg(q0, q1)
     return +total
+
+
+def depth_phase(q, parts):
+    """The V groove's depth phase 2 gamma / lambda (half-turns per um of depth), None for a
+    rectangular groove. The kernel takes gamma once, at the light's centre direction
+    (`light_integrals_in`), for every band of the extent rule: so does this."""
+    if q.get("profile", 0) != 1 or parts.reg is None:
+        return None
+    return 2 * ls.gamma(q, parts.reg, parts.wo) / parts.lam
 
 
 def quadratic_roots(a, b, c):
@@ -119,7 +183,7 @@ def kinks_c(s, reg):
     return [c for c in out if -1 <= c <= 1]
 
 
-def gaussian_integral(s, wo, reg, lam_um, sd, x_max=X_MAX):
+def gaussian_integral(s, wo, reg, lam_um, sd, x_max=X_MAX, ht=None):
     """int phi(x) L(x sd) dx over |x| <= x_max, the sum of the pieces' error estimates, the
     part of the integral from |x| <= X_KERNEL and its error estimate.
     A piece is halved until its estimate is below 1e-12 of the sum of |pieces| between the
@@ -131,8 +195,10 @@ def gaussian_integral(s, wo, reg, lam_um, sd, x_max=X_MAX):
     cuts = sorted({(c + wo_t) / sd for c in kinks_c(s, reg)} | ends)
     cuts = [x for x in cuts if -x_max <= x <= x_max]
 
+    vg = None if ht is None else VgrooveChord(s["w"], s["d"], ht)
+
     def f(x):
-        return mp.npdf(x) * chord(s, wo, reg, lam_um, x * sd)
+        return mp.npdf(x) * chord(s, wo, reg, lam_um, x * sd, vg)
 
     def inside(a, b):
         return abs(a + b) / 2 <= X_KERNEL
@@ -167,12 +233,13 @@ def value(q):
         return mp.mpf(0), single, 0.0, 0.0, mp.mpf(0), 0.0
     sig = mp.mpf(q["sigma"])
     sd = parts.lam / (2 * mp.sqrt(2) * mp.pi * sig)
+    ht = depth_phase(q, parts)
     total, err, win, err_in = mp.mpf(0), mp.mpf(0), mp.mpf(0), mp.mpf(0)
     for k, s in enumerate(q["scratches"]):
         weight = parts.p[k] * parts.d2[k] / (mp.pi * sig * sig)
         if weight == 0:
             continue
-        g, e, w, e_in = gaussian_integral(s, parts.wo, parts.reg[0], parts.lam, sd)
+        g, e, w, e_in = gaussian_integral(s, parts.wo, parts.reg[0], parts.lam, sd, ht=ht)
         total += weight * g
         err += abs(weight) * e
         win += weight * w
@@ -184,7 +251,10 @@ def value(q):
 
 
 def main():
-    args = parse_args(400)
+    vgroove = "--vgroove" in sys.argv
+    if vgroove:
+        sys.argv.remove("--vgroove")
+    args = parse_args(200 if vgroove else 400)
     rng = np.random.default_rng(20_020 + 7919 + args.seed_offset)
     # light_sweep's columns by name, less those this sweep does not compute
     head = ls.header()
@@ -192,6 +262,7 @@ def main():
     rows, t0 = [], time.time()
     while len(rows) < args.count:
         q = ls.draw(rng)
+        q["profile"] = 1 if vgroove else 0
         ref, single, quad_err, tail, win, win_err = value(q)
         if quad_err > 1e-10:
             print(f"quadrature error estimate {quad_err:.1e}: redrawn", file=sys.stderr)
@@ -209,7 +280,7 @@ def main():
         rows.append(r + [exact[0], "%.4g" % tail, exact[1]])
         progress(len(rows), args.count, 20)
     print(f"{len(rows)} queries, {time.time() - t0:.0f} s", file=sys.stderr)
-    write_csv(args.out, "light_extent", [head[i] for i in keep] + ["single", "tail", "window"], rows)
+    write_csv(args.out, "light_extent_vgroove" if vgroove else "light_extent", [head[i] for i in keep] + ["single", "tail", "window"], rows)
 
 
 if __name__ == "__main__":

@@ -36,6 +36,8 @@ GENERATORS = {
     "light_found": (["light_sweep.py", "--found"], SWEEP, ["light_found"], True),
     "light_vgroove": (["light_sweep.py", "--vgroove", "--count", "2"], SWEEP, ["light_vgroove"], False),
     "light_extent": (["light_extent_sweep.py", "--count", "2"], SWEEP, ["light_extent"], False),
+    "light_extent_vgroove": (["light_extent_sweep.py", "--vgroove", "--count", "2"], SWEEP,
+                             ["light_extent_vgroove"], False),
     "vgroove_band": (["vgroove_band_sweep.py", "--count", "2"], SWEEP, ["vgroove_band"], False),
     "lobe1": (["lobe1_sweep.py", "--count", "2"], SWEEP, ["lobe1"], False),
     "disk_lobe": (["disk_lobe_sweep.py", "--count", "2"], SWEEP, ["disk_lobe"], False),
