@@ -3,7 +3,9 @@
 //! the Gauss–Hermite bands (3 and 5) against the mpmath reference
 //! `reference/light_extent_sweep.py`, at the very f32 inputs it evaluated, over
 //! `reference/light_sweep.py`'s domain (sphere and polygon lights from 1e-5 to 1.4 rad, near
-//! and on the horizon, 1–3 rectangular scratches, exact Si).
+//! and on the horizon, 1–3 rectangular scratches, exact Si), and the same draws with V
+//! grooves (`--vgroove`, `light_extent_vgroove.csv`: the chord `Σ_lit ∫ |M − P|² dξ₂` at the
+//! one depth phase the kernel takes for every band), reported in their own groups.
 //!
 //! The reference integrates `φ(x)·L(x·sd)` over the whole line by tanh-sinh quadrature, cut
 //! at the kinks of the lit chord `L`, which it finds by its own equations, and the same
@@ -26,11 +28,16 @@
 //! wherever the window's exact value is (no band within 4.5 standard deviations meets the
 //! light).
 //!
-//! The committed subset (`reference/golden/sweep/light_extent.csv`) runs by default; a larger
-//! sample (`python3 reference/light_extent_sweep.py --count N --seed-offset K --out DIR`)
-//! with `LIGHT_EXTENT_SWEEP_DIR=DIR`. `LIGHT_EXTENT_SWEEP_DUMP=FILE` writes the extent rule's
-//! lit queries (kind, angular radius, elevation, distance, error against the window and
-//! bound) for the stability map (`docs/light_stability_map.py --extent`).
+//! The V grooves (200 queries, 194 lit) are all within the bound as well, worst 0.70
+//! ([`RATCHET_VGROOVE`], [`RATCHET_VGROOVE_HORIZON`], [`RATCHET_VGROOVE_WITHIN`]).
+//!
+//! The committed subsets (`reference/golden/sweep/light_extent.csv`,
+//! `light_extent_vgroove.csv`) run by default; a larger sample
+//! (`python3 reference/light_extent_sweep.py [--vgroove] --count N --seed-offset K --out DIR`)
+//! with `LIGHT_EXTENT_SWEEP_DIR=DIR` (`LIGHT_EXTENT_VGROOVE_SWEEP_DIR=DIR`); the count
+//! ratchets apply to the committed subsets only. `LIGHT_EXTENT_SWEEP_DUMP=FILE` writes the extent rule's
+//! rectangular lit queries (kind, angular radius, elevation, distance, error against the
+//! window and bound) for the stability map (`docs/light_stability_map.py --extent`).
 
 mod sweep_common;
 
@@ -43,8 +50,33 @@ use sweep_common::{
     rel, report,
 };
 
-/// The committed subset's size (the test refuses fewer).
-const MIN_QUERIES: usize = 400;
+/// One table of the sweep: its family (`DIR/family.csv`), the environment variable naming
+/// a further sample's `DIR`, the committed subset's size (the test refuses fewer) and
+/// whether its scratches are V grooves.
+struct Sweep {
+    family: &'static str,
+    env: &'static str,
+    min: usize,
+    vgroove: bool,
+}
+
+/// The rectangular grooves (`light_extent_sweep.py`) and the same draws with V grooves
+/// (`--vgroove`), whose chords the kernel integrates across by quadrature
+/// (`lights::integrate::across_integral`).
+const SWEEPS: [Sweep; 2] = [
+    Sweep {
+        family: "light_extent",
+        env: "LIGHT_EXTENT_SWEEP_DIR",
+        min: 400,
+        vgroove: false,
+    },
+    Sweep {
+        family: "light_extent_vgroove",
+        env: "LIGHT_EXTENT_VGROOVE_SWEEP_DIR",
+        min: MIN_VGROOVE_QUERIES,
+        vgroove: true,
+    },
+];
 
 /// #20's bound, `err ≤ max(1e-4, 8κ)` against the window's exact value, by [`Cause`] (κ
 /// where `light_extent_kappa.csv` has it, else 0), and the count of lit queries within it,
@@ -67,6 +99,16 @@ const MIN_QUERIES: usize = 400;
 const RATCHET: f64 = 1.0;
 const RATCHET_HORIZON: f64 = 1.0;
 const RATCHET_WITHIN: usize = 383;
+
+/// The committed V-groove subset's size (`light_extent_vgroove.csv`).
+const MIN_VGROOVE_QUERIES: usize = 200;
+/// [`RATCHET`] and [`RATCHET_WITHIN`] for the V grooves (`light_extent_vgroove.csv`): all
+/// 194 lit queries within the bound, 192 within 1e-4 of the window's value; the other two
+/// (rows 5 and 137, 1.2e-4 and 3.0e-4) within 0.0089 and 0.072 of their bound with κ
+/// (`light_extent_vgroove_kappa.csv`).
+const RATCHET_VGROOVE: f64 = 1.0;
+const RATCHET_VGROOVE_HORIZON: f64 = 1.0;
+const RATCHET_VGROOVE_WITHIN: usize = 194;
 
 /// The band rules compared: `LightParams::bands` and a name.
 const RULES: [(u32, &str); 4] = [
@@ -134,95 +176,115 @@ impl std::fmt::Display for Tally {
 
 #[test]
 fn extent_rule_is_within_its_bound_over_the_domain() {
-    let table = Table::load(
-        "LIGHT_EXTENT_SWEEP_DIR",
-        "reference/golden/sweep",
-        "light_extent",
-    );
-    check_size("LIGHT_EXTENT_SWEEP_DIR", &table, MIN_QUERIES);
-    let kappas = kappas(&table);
     let mut names = BTreeMap::new();
     let mut stats: Vec<Groups> = RULES.iter().map(|_| BTreeMap::new()).collect();
-    let mut causes: BTreeMap<Cause, Tally> = BTreeMap::new();
+    let mut causes: BTreeMap<(bool, Cause), Tally> = BTreeMap::new();
     let mut bad = Vec::new();
-    let (mut lit, mut within) = (0usize, [0usize; RULES.len()]);
+    // Per table (rectangular, V groove): lit queries, and those within 1e-4 by rule.
+    let (mut lit, mut within) = ([0usize; 2], [[0usize; RULES.len()]; 2]);
     // The extent rule against the whole line, its window's share included (within 1e-4),
-    // the window's own share of the value (the model's error), and the rows over 1e-4
-    // whose κ has not been computed.
-    let (mut within_whole, mut shares) = (0usize, Vec::new());
-    let mut no_kappa = Vec::new();
-    // The extent rule's lit queries for the stability map (`LIGHT_EXTENT_SWEEP_DUMP`).
+    // the window's own share of the value (the model's error), and per table the rows over
+    // 1e-4 whose κ has not been computed.
+    let (mut within_whole, mut shares) = ([0usize; 2], [Vec::new(), Vec::new()]);
+    let mut no_kappa: Vec<(&Sweep, Vec<usize>)> = Vec::new();
+    // The extent rule's lit queries for the stability map (`LIGHT_EXTENT_SWEEP_DUMP`):
+    // the rectangular grooves'.
     let mut dump = String::from("kind,alpha,elev,distance,err,bound\n");
-    for (index, r) in table.rows().enumerate() {
-        let g = light_group(&r, &mut names);
-        let (whole, window) = (r.d("ref"), r.d("window"));
-        if whole > TINY {
-            lit += 1;
-            shares.push((r.d("tail").abs(), index));
-        }
-        for (i, (bands, rule)) in RULES.iter().enumerate() {
-            let got = kernel_value(&r, *bands);
-            // The extent rule is measured against its own window, the others against the
-            // whole line.
-            let want = if *bands == 20 { window } else { whole };
-            let text = || format!("row {index}: kernel {got:e} exact {want:e}: {}", r.text());
-            if *bands == 20 && whole > TINY && rel(got, whole) <= FLOOR {
-                within_whole += 1;
+    for sweep in &SWEEPS {
+        let table = Table::load(sweep.env, "reference/golden/sweep", sweep.family);
+        check_size(sweep.env, &table, sweep.min);
+        let kappas = kappas(sweep, &table);
+        let mut missing = Vec::new();
+        let v = usize::from(sweep.vgroove);
+        for (index, r) in table.rows().enumerate() {
+            let g = light_group(&r, &mut names);
+            let (whole, window) = (r.d("ref"), r.d("window"));
+            if whole > TINY {
+                lit[v] += 1;
+                shares[v].push((r.d("tail").abs(), index));
             }
-            if want <= TINY {
-                // No band within the window (the extent rule) or within 8 standard
-                // deviations (the others) meets the light.
-                if *bands == 20 && !(f64::from(got).abs() <= TINY) {
-                    bad.push(format!(
-                        "{rule}: {got:e} where the exact value is {want:e}: {}",
+            for (i, (bands, rule)) in RULES.iter().enumerate() {
+                let got = kernel_value(&r, *bands);
+                // The extent rule is measured against its own window, the others against
+                // the whole line.
+                let want = if *bands == 20 { window } else { whole };
+                let text = || {
+                    format!(
+                        "{} row {index}: kernel {got:e} exact {want:e}: {}",
+                        sweep.family,
                         r.text()
+                    )
+                };
+                if *bands == 20 && whole > TINY && rel(got, whole) <= FLOOR {
+                    within_whole[v] += 1;
+                }
+                if want <= TINY {
+                    // No band within the window (the extent rule) or within 8 standard
+                    // deviations (the others) meets the light.
+                    if *bands == 20 && !(f64::from(got).abs() <= TINY) {
+                        bad.push(format!(
+                            "{rule}: {got:e} where the exact value is {want:e}: {} row \
+                             {index}: {}",
+                            sweep.family,
+                            r.text()
+                        ));
+                    }
+                    continue;
+                }
+                let err = rel(got, want);
+                let err = if err.is_nan() { f64::INFINITY } else { err };
+                if err <= FLOOR {
+                    within[v][i] += 1;
+                }
+                if *bands != 20 {
+                    stats[i].entry(g).or_default().add(err, 0.0, text);
+                    continue;
+                }
+                let kappa = kappas.get(&index).copied();
+                if err > FLOOR && kappa.is_none() {
+                    missing.push(index);
+                }
+                let kappa = kappa.unwrap_or(0.0);
+                stats[i].entry(g).or_default().add(err, kappa, text);
+                let cause = if g.1.ends_with("near the horizon") {
+                    Cause::Horizon
+                } else {
+                    Cause::Other
+                };
+                let ratio = err / bound(kappa);
+                if !sweep.vgroove {
+                    writeln!(
+                        dump,
+                        "{},{:e},{:e},{:e},{err:e},{:e}",
+                        g.0.0,
+                        r.d("alpha"),
+                        r.d("elev"),
+                        light_distance(&r),
+                        bound(kappa)
+                    )
+                    .unwrap();
+                }
+                causes
+                    .entry((sweep.vgroove, cause))
+                    .or_default()
+                    .add(err, ratio, text);
+                let limit = match (sweep.vgroove, cause) {
+                    (false, Cause::Horizon) => RATCHET_HORIZON,
+                    (false, Cause::Other) => RATCHET,
+                    (true, Cause::Horizon) => RATCHET_VGROOVE_HORIZON,
+                    (true, Cause::Other) => RATCHET_VGROOVE,
+                };
+                if !(ratio <= limit) {
+                    bad.push(format!(
+                        "{rule}: relative error {err:.3e}, {ratio:.3} of max(1e-4, 8κ), κ \
+                         {kappa:.3e}, over {limit:e} ({cause:?}): {}",
+                        text()
                     ));
                 }
-                continue;
             }
-            let err = rel(got, want);
-            let err = if err.is_nan() { f64::INFINITY } else { err };
-            if err <= FLOOR {
-                within[i] += 1;
-            }
-            if *bands != 20 {
-                stats[i].entry(g).or_default().add(err, 0.0, text);
-                continue;
-            }
-            let kappa = kappas.get(&index).copied();
-            if err > FLOOR && kappa.is_none() {
-                no_kappa.push(index);
-            }
-            let kappa = kappa.unwrap_or(0.0);
-            stats[i].entry(g).or_default().add(err, kappa, text);
-            let cause = if g.1.ends_with("near the horizon") {
-                Cause::Horizon
-            } else {
-                Cause::Other
-            };
-            let ratio = err / bound(kappa);
-            writeln!(
-                dump,
-                "{},{:e},{:e},{:e},{err:e},{:e}",
-                g.0.0,
-                r.d("alpha"),
-                r.d("elev"),
-                light_distance(&r),
-                bound(kappa)
-            )
-            .unwrap();
-            causes.entry(cause).or_default().add(err, ratio, text);
-            let limit = match cause {
-                Cause::Horizon => RATCHET_HORIZON,
-                Cause::Other => RATCHET,
-            };
-            if !(ratio <= limit) {
-                bad.push(format!(
-                    "{rule}: relative error {err:.3e}, {ratio:.3} of max(1e-4, 8κ), κ {kappa:.3e}, \
-                     over {limit:e} ({cause:?}): {}",
-                    text()
-                ));
-            }
+        }
+        if !missing.is_empty() {
+            no_kappa.push((sweep, missing));
         }
     }
     for (i, (bands, rule)) in RULES.iter().enumerate() {
@@ -233,63 +295,70 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
             "the Gaussian across the band, relative error ÷ 1e-4"
         };
         println!(
-            "{rule} (bands = {bands}) against {against}; {} lit queries within 1e-4 ({lit} lit \
-             on the whole line):",
-            within[i]
+            "{rule} (bands = {bands}) against {against}; lit queries within 1e-4: rectangular \
+             {} ({} lit on the whole line), V groove {} ({}):",
+            within[0][i], lit[0], within[1][i], lit[1]
         );
-        report(&stats[i], 34);
+        report(&stats[i], 40);
     }
     println!(
-        "extent rule against its window by cause: queries, within 1e-4 / max(1e-4, 8κ) / 10× \
-         that, worst of the bound"
+        "extent rule against its window by groove and cause: queries, within 1e-4 / \
+         max(1e-4, 8κ) / 10× that, worst of the bound"
     );
-    let mut within_bound = 0;
-    for (cause, t) in &causes {
-        println!("  {cause:?}: {t}");
-        within_bound += t.within[1];
+    let mut within_bound = [0usize; 2];
+    for ((vgroove, cause), t) in &causes {
+        let groove = if *vgroove { "V groove" } else { "rectangular" };
+        println!("  {groove}, {cause:?}: {t}");
+        within_bound[usize::from(*vgroove)] += t.within[1];
     }
-    let [a, b, c] = [1.0e-4, 1.0e-3, 1.0e-2].map(|l| shares.iter().filter(|s| s.0 <= l).count());
-    let worst = shares
-        .iter()
-        .copied()
-        .fold((0.0, 0), |w, s| if s.0 > w.0 { s } else { w });
-    println!(
-        "the window as a model, the share of the whole line's value from beyond 4.5 standard \
-         deviations: {lit} lit queries, {a} / {b} / {c} within 1e-4 / 1e-3 / 1e-2, worst {:.3e} \
-         (row {})\nthe extent rule against the whole line: {within_whole} of {lit} lit queries \
-         within 1e-4",
-        worst.0, worst.1
-    );
-    if !no_kappa.is_empty() {
-        let rows: Vec<String> = no_kappa.iter().map(usize::to_string).collect();
+    for sweep in &SWEEPS {
+        let v = usize::from(sweep.vgroove);
+        let share = &shares[v];
+        let [a, b, c] = [1.0e-4, 1.0e-3, 1.0e-2].map(|l| share.iter().filter(|s| s.0 <= l).count());
+        let worst = share
+            .iter()
+            .copied()
+            .fold((0.0, 0), |w, s| if s.0 > w.0 { s } else { w });
         println!(
-            "{} rows over 1e-4 have no κ: python3 reference/light_extent_kappa.py --rows {} \
-             (with --dir DIR for LIGHT_EXTENT_SWEEP_DIR)",
-            no_kappa.len(),
-            rows.join(",")
+            "{}: the window as a model, the share of the whole line's value from beyond 4.5 \
+             standard deviations: {} lit queries, {a} / {b} / {c} within 1e-4 / 1e-3 / 1e-2, \
+             worst {:.3e} (row {}); the extent rule against the whole line: {} within 1e-4",
+            sweep.family, lit[v], worst.0, worst.1, within_whole[v]
+        );
+    }
+    for (sweep, rows) in &no_kappa {
+        let rows: Vec<String> = rows.iter().map(usize::to_string).collect();
+        let flag = if sweep.vgroove { " --vgroove" } else { "" };
+        println!(
+            "{} rows of {} over 1e-4 have no κ: python3 reference/light_extent_kappa.py{flag} \
+             --rows {} (with --dir DIR for {})",
+            rows.len(),
+            sweep.family,
+            rows.join(","),
+            sweep.env
         );
     }
     if let Ok(path) = std::env::var("LIGHT_EXTENT_SWEEP_DUMP") {
         std::fs::write(&path, dump).unwrap();
     }
-    if within_bound < RATCHET_WITHIN {
-        bad.push(format!(
-            "{within_bound} lit queries within max(1e-4, 8κ), fewer than the {RATCHET_WITHIN} \
-             measured"
-        ));
+    for (sweep, ratchet) in SWEEPS.iter().zip([RATCHET_WITHIN, RATCHET_VGROOVE_WITHIN]) {
+        let n = within_bound[usize::from(sweep.vgroove)];
+        if std::env::var_os(sweep.env).is_none() && n < ratchet {
+            bad.push(format!(
+                "{}: {n} lit queries within max(1e-4, 8κ), fewer than the {ratchet} measured",
+                sweep.family
+            ));
+        }
     }
     assert!(bad.is_empty(), "extent rule:\n{}", bad.join("\n"));
 }
 
-/// κ of the rows `reference/light_extent_kappa.py` has computed (`light_extent_kappa.csv`
+/// κ of the rows `reference/light_extent_kappa.py` has computed (`FAMILY_kappa.csv`
 /// beside the table), by row index; a row whose recorded window value is not the table's
 /// is stale and fails the test.
-fn kappas(table: &Table) -> BTreeMap<usize, f64> {
-    let Some(k) = Table::load_optional(
-        "LIGHT_EXTENT_SWEEP_DIR",
-        "reference/golden/sweep",
-        "light_extent_kappa",
-    ) else {
+fn kappas(sweep: &Sweep, table: &Table) -> BTreeMap<usize, f64> {
+    let family = format!("{}_kappa", sweep.family);
+    let Some(k) = Table::load_optional(sweep.env, "reference/golden/sweep", &family) else {
         return BTreeMap::new();
     };
     let windows: Vec<String> = table.rows().map(|r| r.s("window").to_string()).collect();
@@ -299,8 +368,9 @@ fn kappas(table: &Table) -> BTreeMap<usize, f64> {
             assert_eq!(
                 windows.get(index).map(String::as_str),
                 Some(r.s("window")),
-                "light_extent_kappa.csv row {index} is not light_extent.csv's: rerun \
-                 reference/light_extent_kappa.py"
+                "{family}.csv row {index} is not {}.csv's: rerun \
+                 reference/light_extent_kappa.py",
+                sweep.family
             );
             (index, r.d("kappa"))
         })
