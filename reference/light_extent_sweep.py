@@ -133,9 +133,7 @@ def chord(s, wo, reg, lam_um, o, vg=None):
         if vg is None:
             total = ls.lit_sum(band, reg, mp.mpf(s["w"]), lam_um)
         else:
-            total = mp.mpf(0)
-            for q0, q1 in ls.lit_chords(band, reg, lam_um):
-                total += vg(q0, q1)
+            total = ls.lit_integral_sum(band, reg, lam_um, vg)
     return +total
 
 
@@ -145,7 +143,7 @@ def depth_phase(q, parts):
     (`light_integrals_in`), for every band of the extent rule: so does this."""
     if q.get("profile", 0) != 1 or parts.reg is None:
         return None
-    return 2 * ls.gamma(q, parts.reg, parts.wo) / parts.lam
+    return ls.depth_phase(q, parts.reg, parts.wo, parts.lam)
 
 
 def quadratic_roots(a, b, c):

@@ -226,19 +226,32 @@ def band_sum(s, wo, reg, lam_um):
     return lit_sum(Band(s, wo), reg[0], mp.mpf(s["w"]), lam_um)
 
 
+def lit_integral_sum(band, shape, lam_um, integral):
+    """sum_lit integral(q0, q1) along `band` inside the light `shape`: a V groove's
+    int_{q0}^{q1} |M - P|^2 dq over each lit chord (`vgroove_sum`,
+    `light_extent_sweep.chord`)."""
+    total = mp.mpf(0)
+    for q0, q1 in lit_chords(band, shape, lam_um):
+        total += integral(q0, q1)
+    return total
+
+
+def depth_phase(q, reg, wo, lam_um):
+    """A V groove's depth phase 2 gamma / lambda (half-turns per um of depth), `gamma` at
+    the light's centre direction."""
+    return 2 * gamma(q, reg, wo) / lam_um
+
+
 def vgroove_sum(q, s, wo, reg, lam_um):
     """The V groove's L_k (`--vgroove`): sum_lit int_{q0}^{q1} |M - P|^2 dq, the depth
     inside (D2_k = 1), with `vgroove_band_sweep.band_integral` (16-point Gauss-Legendre on
-    quarter-lobe pieces, at the working precision) at the depth phase 2 gamma / lambda
-    (half-turns per um of depth) of `gamma`."""
+    quarter-lobe pieces, at the working precision) at the depth phase of `depth_phase`."""
     if reg is None:
         return mp.mpf(0)
-    band = Band(s, wo)
-    ht = 2 * gamma(q, reg, wo) / lam_um
-    total = mp.mpf(0)
-    for q0, q1 in lit_chords(band, reg[0], lam_um):
-        total += vgroove_band_sweep.band_integral(s["w"], s["d"], ht, q0, q1 - q0)
-    return total
+    ht = depth_phase(q, reg, wo, lam_um)
+    return lit_integral_sum(
+        Band(s, wo), reg[0], lam_um,
+        lambda q0, q1: vgroove_band_sweep.band_integral(s["w"], s["d"], ht, q0, q1 - q0))
 
 
 def chord_sum(q, s, wo, reg, lam_um):
@@ -331,7 +344,7 @@ def band_parameter_conditioning(parts):
     sig = mp.mpf(parts.q["sigma"])
     worst = mp.mpf(0)
     vgroove = parts.q.get("profile", 0) == 1
-    ht = 2 * gamma(parts.q, parts.reg, parts.wo) / parts.lam
+    ht = depth_phase(parts.q, parts.reg, parts.wo, parts.lam)
     for k, s in enumerate(parts.q["scratches"]):
         band = Band(s, parts.wo)
         w = mp.mpf(s["w"])
