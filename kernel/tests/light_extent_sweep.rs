@@ -51,13 +51,17 @@ use sweep_common::{
 };
 
 /// One table of the sweep: its family (`DIR/family.csv`), the environment variable naming
-/// a further sample's `DIR`, the committed subset's size (the test refuses fewer) and
-/// whether its scratches are V grooves.
+/// a further sample's `DIR`, the committed subset's size (the test refuses fewer),
+/// whether its scratches are V grooves, its largest error ÷ bound away from the horizon and
+/// near it, and how many of the committed subset's lit queries must be within the bound.
 struct Sweep {
     family: &'static str,
     env: &'static str,
     min: usize,
     vgroove: bool,
+    ratchet: f64,
+    ratchet_horizon: f64,
+    within: usize,
 }
 
 /// The rectangular grooves (`light_extent_sweep.py`) and the same draws with V grooves
@@ -69,12 +73,18 @@ const SWEEPS: [Sweep; 2] = [
         env: "LIGHT_EXTENT_SWEEP_DIR",
         min: 400,
         vgroove: false,
+        ratchet: RATCHET,
+        ratchet_horizon: RATCHET_HORIZON,
+        within: RATCHET_WITHIN,
     },
     Sweep {
         family: "light_extent_vgroove",
         env: "LIGHT_EXTENT_VGROOVE_SWEEP_DIR",
         min: MIN_VGROOVE_QUERIES,
         vgroove: true,
+        ratchet: RATCHET_VGROOVE,
+        ratchet_horizon: RATCHET_VGROOVE_HORIZON,
+        within: RATCHET_VGROOVE_WITHIN,
     },
 ];
 
@@ -268,11 +278,9 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
                     .entry((sweep.vgroove, cause))
                     .or_default()
                     .add(err, ratio, text);
-                let limit = match (sweep.vgroove, cause) {
-                    (false, Cause::Horizon) => RATCHET_HORIZON,
-                    (false, Cause::Other) => RATCHET,
-                    (true, Cause::Horizon) => RATCHET_VGROOVE_HORIZON,
-                    (true, Cause::Other) => RATCHET_VGROOVE,
+                let limit = match cause {
+                    Cause::Horizon => sweep.ratchet_horizon,
+                    Cause::Other => sweep.ratchet,
                 };
                 if !(ratio <= limit) {
                     bad.push(format!(
@@ -341,8 +349,8 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
     if let Ok(path) = std::env::var("LIGHT_EXTENT_SWEEP_DUMP") {
         std::fs::write(&path, dump).unwrap();
     }
-    for (sweep, ratchet) in SWEEPS.iter().zip([RATCHET_WITHIN, RATCHET_VGROOVE_WITHIN]) {
-        let n = within_bound[usize::from(sweep.vgroove)];
+    for sweep in &SWEEPS {
+        let (n, ratchet) = (within_bound[usize::from(sweep.vgroove)], sweep.within);
         if std::env::var_os(sweep.env).is_none() && n < ratchet {
             bad.push(format!(
                 "{}: {n} lit queries within max(1e-4, 8κ), fewer than the {ratchet} measured",
