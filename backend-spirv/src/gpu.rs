@@ -4,6 +4,7 @@ use crate::adapter::{AdapterChoice, AdapterSummary};
 use crate::dispatch::Pace;
 use crate::error::{Result, SpirvError};
 use crate::module::{CheckedModule, check};
+use crate::no_contraction;
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, PoisonError};
@@ -72,8 +73,9 @@ impl Gpu {
     ///
     /// # Safety
     ///
-    /// A module that passes the structural check goes to the driver as it is
-    /// (`wgpu`'s SPIR-V passthrough): it must be valid SPIR-V (`spirv-val` passes) with the
+    /// A module that passes the structural check goes to the driver with its float
+    /// arithmetic marked `NoContraction` (`no_contraction.rs`, as the embedded module) and
+    /// otherwise as it is (`wgpu`'s SPIR-V passthrough): it must be valid SPIR-V (`spirv-val` passes) with the
     /// shader crate's conventions (workgroup size `WORKGROUP_SIZE`, descriptor set 0 with
     /// the inputs then the output). An invalid one is undefined behaviour in the driver.
     pub unsafe fn with_module(choice: &AdapterChoice, spirv: &[u8]) -> Result<Self> {
@@ -81,7 +83,8 @@ impl Gpu {
     }
 
     fn open_with(choice: &AdapterChoice, spirv: &[u8]) -> Result<Self> {
-        let module = check(spirv)?;
+        let mut module = check(spirv)?;
+        module.words = no_contraction::decorate(&module.words);
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor {
             backends: wgpu::Backends::VULKAN,
             ..wgpu::InstanceDescriptor::new_without_display_handle_from_env()

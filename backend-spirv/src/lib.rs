@@ -29,6 +29,7 @@ mod dispatch;
 mod error;
 mod gpu;
 mod module;
+mod no_contraction;
 mod probe;
 mod scene;
 mod table;

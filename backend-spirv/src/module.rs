@@ -14,7 +14,7 @@ use crate::error::{Result, SpirvError};
 /// The SPIR-V magic number in the module's first word.
 const MAGIC: u32 = 0x0723_0203;
 /// Words in the module header: magic, version, generator, id bound, schema.
-const HEADER_WORDS: usize = 5;
+pub(crate) const HEADER_WORDS: usize = 5;
 /// `OpMemoryModel`.
 const OP_MEMORY_MODEL: u32 = 14;
 /// `OpEntryPoint`.
