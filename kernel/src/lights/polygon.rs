@@ -11,18 +11,22 @@
 //! Degenerate triangles (collinear or repeated vertices, zero area, a vertex at the shading
 //! point, the polygon's plane through the point) contain nothing. Emitters are two-sided.
 //!
-//! A small polygon (every vertex direction within 0.05 of the first, `r̂`) is also kept in
+//! A small polygon (every vertex direction within 0.1 of the first, `r̂`) is also kept in
 //! local form: each vertex as `U_m − r̂`, formed from differences of the positions, so that
 //! its shape keeps ~ε of its own size rather than of 1 (a light 1e-5 rad across would
 //! otherwise be reshaped by 0.6 %). Its crossings, the test of which arcs are lit, the
-//! range of bands it meets and their kinks are all formed from these offsets and from
-//! quantities common to the whole light (`r̂·t₃ + wo·t`, `r̂_b² + r̂_z² − ρ₀²`), rounded once,
-//! which move the light as a whole by ~ε; the chord between two crossings is the difference
-//! of their local coordinates ([`ArcPoint::local`]).
+//! range of bands it meets and their kinks are all formed from these offsets and from the
+//! reference's height over the band's centre line, `r̂·t̂ + ŵo·t̂` for unit `r̂`, `t̂`, `ŵo`,
+//! formed in two-fold precision ([`crate::math::twofold`]): a light and a view near a
+//! coordinate axis are resolved far more finely than `ε` of 1, and the `f32` directions'
+//! norms alone moved such a light against the band by ~ε (11× the bound near the horizon).
+//! The chord between two crossings is the difference of their local coordinates
+//! ([`ArcPoint::local`]).
 
 use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints};
 use super::limits::MAX_VERTICES;
 use crate::math;
+use crate::math::twofold;
 use glam::Vec3;
 
 /// Below this `|det(ĉ, U_m, U_{m+1})|` a fan triangle counts as degenerate.
@@ -36,10 +40,15 @@ const LOCAL_TAU: (f32, f32) = (-0.5, 1.5);
 /// arc's `N` once ([`SphericalPolygon::edge_crossings`]).
 const LOCAL_EXACT_N: f32 = 1.0e-4;
 
+/// Edges longer than `√` this (chord, rad) correct it twice.
+const LOCAL_TWICE_N: f32 = 1.0e-2;
+
 /// A polygon whose vertex directions all lie within this chord of the first one's crosses
 /// the bands in its local form ([`SphericalPolygon::crossings`]); a larger light's chords
-/// are long enough that O(1) roundings do not matter.
-const LOCAL_MAX: f32 = 0.05;
+/// are long enough that O(1) roundings do not matter. 0.05 before: a 0.034-rad triangle
+/// about the zenith, a band through it near a vertex, was 1.4× the bound
+/// (`reference/light_sweep.py`, 10^5 further queries).
+const LOCAL_MAX: f32 = 0.1;
 
 /// A spherical polygon with precomputed edge and spoke planes.
 #[derive(Clone, Copy, Debug)]
@@ -62,6 +71,9 @@ pub struct SphericalPolygon {
     offset: [Vec3; MAX_VERTICES],
     /// `r̂` rounded: only the O(1) components that every vertex shares are taken from it.
     reference: Vec3,
+    /// The first vertex's position `p₀` (relative to the shading point), from which a
+    /// local polygon's height over a band is formed ([`SphericalPolygon::centre_height`]).
+    first: Vec3,
     /// 1 where every `|U_m − r̂|` is below [`LOCAL_MAX`] (and finite), else 0: the bands
     /// cross in local form ([`SphericalPolygon::is_local`]; a `u32`, not a `bool`, whose
     /// niche would carry `Option<SphericalPolygon>`'s tag, which rust-gpu cannot copy),
@@ -85,6 +97,7 @@ impl SphericalPolygon {
         center: Vec3::Z,
         offset: [Vec3::ZERO; MAX_VERTICES],
         reference: Vec3::Z,
+        first: Vec3::Z,
         local: 0,
         edge_k: [0.0; MAX_VERTICES],
         spoke_k: [0.0; MAX_VERTICES],
@@ -150,6 +163,7 @@ impl SphericalPolygon {
             center,
             offset,
             reference: u[0],
+            first: p0,
             local: u32::from(local),
             edge_k: [0.0; MAX_VERTICES],
             spoke_k: [0.0; MAX_VERTICES],
@@ -181,7 +195,7 @@ impl SphericalPolygon {
         Some(poly)
     }
 
-    /// Whether the polygon is kept in local form (every vertex direction within 0.05 of
+    /// Whether the polygon is kept in local form (every vertex direction within 0.1 of
     /// the first).
     #[inline]
     pub fn is_local(&self) -> bool {
@@ -320,17 +334,19 @@ impl SphericalPolygon {
             let (lo, hi) = self.dot_range(family.t3);
             return (lo + family.wo_t, hi + family.wo_t);
         }
+        let height = self.centre_height(family);
         let mut range = (f32::INFINITY, f32::NEG_INFINITY);
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
             let next = if m + 1 < self.count { m + 1 } else { 0 };
             if next < MAX_VERTICES {
-                let v = self.band_offset_of(family, self.offset[m]);
+                let v = self.band_offset_of(family, height, self.offset[m]);
                 range = widen(range, (v, v));
                 let tau = self.local_stationary(family.t3, self.offset[m], self.offset[next]);
                 if tau > 0.0 && tau < 1.0 {
                     let v = self.band_offset_of(
                         family,
+                        height,
                         self.local_point(self.offset[m], self.offset[next], tau).0,
                     );
                     range = widen(range, (v, v));
@@ -357,18 +373,19 @@ impl SphericalPolygon {
             self.kinks(family.t3, family.wo_t, out);
             return;
         }
+        let height = self.centre_height(family);
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
             let next = if m + 1 < self.count { m + 1 } else { 0 };
             if next < MAX_VERTICES {
                 if self.reference.z + self.offset[m].z >= 0.0 {
-                    out.push(self.band_offset_of(family, self.offset[m]));
+                    out.push(self.band_offset_of(family, height, self.offset[m]));
                 }
                 let tau = self.local_stationary(family.t3, self.offset[m], self.offset[next]);
                 if tau > 0.0 && tau < 1.0 {
                     let (e, z) = self.local_point(self.offset[m], self.offset[next], tau);
                     if z >= 0.0 {
-                        out.push(self.band_offset_of(family, e));
+                        out.push(self.band_offset_of(family, height, e));
                     }
                 }
                 let za = self.reference.z + self.offset[m].z;
@@ -378,6 +395,7 @@ impl SphericalPolygon {
                     let tau = za / (za - zb);
                     out.push(self.band_offset_of(
                         family,
+                        height,
                         self.local_point(self.offset[m], self.offset[next], tau).0,
                     ));
                 }
@@ -387,20 +405,22 @@ impl SphericalPolygon {
     }
 
     /// The offset `o` of the band of `family` through the direction `r̂ + e` (`e` a local
-    /// offset, `r̂ + e` unit). Where the bands are wide (`|c₀| ≤ ρ₀`) it is
-    /// `(r̂·t₃ + wo·t) + e·t₃`; where they are small circles about `±t₃` (`|c₀| > ρ₀`) an
+    /// offset, `r̂ + e` unit), `height` the reference's over the centre line
+    /// ([`SphericalPolygon::centre_height`]). Where the bands are wide (`|c₀| ≤ ρ₀`) it is
+    /// `height + e·t₃`; where they are small circles about `±t₃` (`|c₀| > ρ₀`) an
     /// ulp of `c` would move them by `ε/ρ`, and the band is placed by its radius instead:
     /// `ρ(o)² = ρ₀² + o(2 wo·t − o)` equals the direction's `ρ_w² = (r̂_b + e_b)² + (r̂_z +
     /// e_z)²` at `o = D/(wo·t + sgn(wo·t)√(wo·t² − D))`, `D = ρ_w² − ρ₀²` formed as
-    /// `(r̂_b² + r̂_z² − ρ₀²) + 2(r̂_b e_b + r̂_z e_z) + e_b² + e_z²` (the first term as the
-    /// crossings form it, [`SphericalPolygon::radius_excess`]).
-    fn band_offset_of(&self, family: &BandFamily, e: Vec3) -> f32 {
+    /// `(r̂_b² + r̂_z² − ρ₀²) + 2(r̂_b e_b + r̂_z e_z) + e_b² + e_z²`, the first term, for unit
+    /// `r̂`, `c₀² − (r̂·t₃)² = −height (r̂·t₃ + c₀)` as the crossings form it
+    /// ([`LocalBand::excess`]).
+    fn band_offset_of(&self, family: &BandFamily, height: f32, e: Vec3) -> f32 {
         let r = self.reference;
         if !family.narrow() {
-            return (r.dot(family.t3) + family.wo_t) + e.dot(family.t3);
+            return height + e.dot(family.t3);
         }
         let (rb, eb) = (r.dot(family.b3), e.dot(family.b3));
-        let d = self.radius_excess(rb, family.rho0_sq)
+        let d = -height * (r.dot(family.t3) - family.wo_t)
             + (2.0 * (rb * eb + r.z * e.z) + (eb * eb + e.z * e.z));
         let wo_t = family.wo_t;
         d / (wo_t + math::sign(wo_t) * math::sqrt0(wo_t * wo_t - d))
@@ -426,6 +446,19 @@ impl SphericalPolygon {
         0.5 + along.dot(u) / (self.reference.dot(u) * along.length_squared())
     }
 
+    /// `r̂·t₃ − c₀`, the reference's height over the centre line `w·t₃ = c₀` of `family`'s
+    /// bands, for unit `r̂ = p₀/|p₀|`, `t₃` and `wo`: `((p₀·t)/|p₀| + (wo·t)/|wo|)/|t|`,
+    /// the two quotients in two-fold precision ([`twofold`]), so that the difference keeps
+    /// what the inputs resolve. In `f32` the two O(1) terms, and the rounded directions'
+    /// norms, put ~ε between the light and the band; a light and a view near a coordinate
+    /// axis are resolved to ~1e-10 (`reference/light_sweep.py`, 11× the bound near the
+    /// horizon).
+    fn centre_height(&self, family: &BandFamily) -> f32 {
+        let (p, t, wo) = (self.first, family.t3, family.wo);
+        let along = |v: Vec3| twofold::dot2(v.x, t.x, v.y, t.y) / twofold::length(v.x, v.y, v.z);
+        (along(p) + along(wo)).value() / math::sqrt(t.x * t.x + t.y * t.y)
+    }
+
     /// The reference direction `r̂` seen from `band` ([`LocalBand`]), formed once for the
     /// band's crossings and the test of its arcs; zeros for a polygon not in local form.
     pub fn local_band(&self, band: &BandCircle) -> LocalBand {
@@ -434,8 +467,10 @@ impl SphericalPolygon {
         }
         let r = self.reference;
         let rb = r.dot(band.family.b3);
+        let height = self.centre_height(&band.family) - band.offset;
         LocalBand {
-            height: (r.dot(band.family.t3) - band.c0) - band.offset,
+            height,
+            excess: -height * (r.dot(band.family.t3) + band.c),
             rb,
             s_ref: rb / band.rho,
             z_ref: r.z / band.rho,
@@ -483,15 +518,8 @@ impl SphericalPolygon {
         self.inside::<true>(e)
     }
 
-    /// `r̂_b² + r̂_z² − ρ₀²`, formed once for a scratch and view: the reference's squared
-    /// distance from the `t₃` axis less the centre line's.
-    #[inline]
-    fn radius_excess(&self, rb: f32, rho0_sq: f32) -> f32 {
-        (rb * rb + self.reference.z * self.reference.z) - rho0_sq
-    }
-
     /// Adds where the band crosses the great circles of the polygon's edges: for a small
-    /// polygon (every vertex within `LOCAL_MAX` = 0.05 of the first) in local form, with
+    /// polygon (every vertex within `LOCAL_MAX` = 0.1 of the first) in local form, with
     /// [`ArcPoint::local`] set (`edge_crossings` on wide bands, `edge_crossings_narrow` on
     /// narrow ones); otherwise on the whole
     /// circles ([`BandCircle::plane_crossings`]).
@@ -531,8 +559,9 @@ impl SphericalPolygon {
     ///
     /// a quadratic in `τ` once `N` is fixed: taken as 1, which puts an error of `L⁴/128` into
     /// heights of size `L`, below `εL` up to `L² = LOCAL_EXACT_N`; beyond, once more at the
-    /// root's own `N` (leaving `L⁶/2048`, below `εL` up to `L = 0.1`, twice `LOCAL_MAX`). The
-    /// kinks ([`SphericalPolygon::band_offset_of`]) take the same `h_r`.
+    /// root's own `N` (leaving `L⁶/2048`, below `εL` up to `L = 0.1`), and beyond
+    /// `L² = LOCAL_TWICE_N` twice (`~L⁸/32768`, below `εL` up to `L = 0.2`, twice
+    /// `LOCAL_MAX`). The kinks ([`SphericalPolygon::band_offset_of`]) take the same `h_r`.
     fn edge_crossings(
         &self,
         band: &BandCircle,
@@ -553,9 +582,16 @@ impl SphericalPolygon {
             // A root far outside the edge (the far one of a nearly straight edge) is left
             // alone: its `N` would move it, and `nearest` could then pick the other root.
             let near_edge = tau >= 2.0 * LOCAL_TAU.0 && tau <= 2.0 * LOCAL_TAU.1;
-            if near_edge && l2 > LOCAL_EXACT_N {
+            let passes = if l2 > LOCAL_TWICE_N {
+                2
+            } else {
+                u32::from(l2 > LOCAL_EXACT_N)
+            };
+            let mut pass = 0;
+            while near_edge && pass < passes {
                 let n = math::sqrt0(1.0 - tau * (1.0 - tau) * l2);
                 tau = nearest(edge_roots(ha, dh, band.c * l2 / (1.0 + n)), tau);
+                pass += 1;
             }
             if near_edge && tau >= LOCAL_TAU.0 && tau <= LOCAL_TAU.1 {
                 let e = self.local_point(da, db, tau).0;
@@ -585,8 +621,8 @@ impl SphericalPolygon {
     /// `r̂` (`local_planes`: small, each to its relative accuracy). On the band
     /// `e_t = c − r̂·t₃` (the band's height, [`LocalBand::height`]), so the
     /// crossings are where the line `P_b e_b + P_z e_z = −(k + P_t e_t)` meets the circle
-    /// `(r̂_b + e_b)² + (r̂_z + e_z)² = ρ²`, `ρ² = ρ₀² + o(2 wo·t − o)`, whose
-    /// `ρ² − r̂_b² − r̂_z²` keeps [`SphericalPolygon::radius_excess`] as the kinks do. As in
+    /// `(r̂_b + e_b)² + (r̂_z + e_z)² = ρ²`, whose `r̂_b² + r̂_z² − ρ²` is
+    /// [`LocalBand::excess`], from the reference's height as the kinks form it. As in
     /// the band circle's own form, an ulp of `c` moves the band along `t₃` (by ~ερ across
     /// it), not across it by `ε/ρ` as the height form would (2e-6 rad on a band of radius
     /// 0.03).
@@ -614,10 +650,7 @@ impl SphericalPolygon {
         let (xb, xz) = (rb + e0b, r.z + e0z);
         // λ² + 2 B λ + C = 0 along the line.
         let bq = db_ * xb + dz_ * xz;
-        let o = band.offset;
-        let wo_t = band.family.wo_t;
-        let cq = (self.radius_excess(rb, band.family.rho0_sq) - o * (2.0 * wo_t - o))
-            + (2.0 * (rb * e0b + r.z * e0z) + (e0b * e0b + e0z * e0z));
+        let cq = at.excess + (2.0 * (rb * e0b + r.z * e0z) + (e0b * e0b + e0z * e0z));
         let disc = bq * bq - cq;
         if !(disc >= 0.0) {
             return;
@@ -648,9 +681,13 @@ fn direction_offset(p: Vec3, p0: Vec3) -> Vec3 {
 /// share, formed once per band.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct LocalBand {
-    /// `r̂·t₃ − c`, the reference's height over the band: `c₀` and `r̂·t₃` are rounded once
-    /// for all bands (a shift of the whole light by ~ε), the exact offset `o` apart.
+    /// `r̂·t₃ − c`, the reference's height over the band: over the centre line in two-fold
+    /// precision (`SphericalPolygon::centre_height`), the exact offset `o` apart.
     pub height: f32,
+    /// `r̂_b² + r̂_z² − ρ²`, the reference's squared distance from the `t₃` axis less the
+    /// band's: for unit `r̂`, `c² − (r̂·t₃)² = −height (r̂·t₃ + c)`, to the height's relative
+    /// accuracy (narrow bands' crossings).
+    pub excess: f32,
     /// `r̂·b₃`.
     pub rb: f32,
     /// `r̂·b₃/ρ`, the reference's `s`.

@@ -6,7 +6,8 @@
 //!
 //! For the few quantities whose `f32` rounding a query's inputs resolve more finely than
 //! `ε` of an O(1) value: the angle between a small sphere light's axis and a band
-//! ([`crate::lights::sphere::SphereCap`]).
+//! ([`crate::lights::sphere::SphereCap`]) and a small polygon's height over a band
+//! ([`crate::lights::polygon::SphericalPolygon`]).
 
 use super::sqrt;
 
@@ -118,8 +119,32 @@ impl core::ops::Mul for Twofold {
     }
 }
 
+impl core::ops::Div for Twofold {
+    type Output = Twofold;
+
+    /// `self / other` (`other ≠ 0`): the `f32` quotient `q` corrected once by the residual
+    /// `self − q·other`, whose leading part is formed exactly.
+    #[inline]
+    fn div(self, other: Twofold) -> Twofold {
+        let q = self.hi / other.hi;
+        let p = two_prod(q, other.hi);
+        let residual = (((self.hi - p.hi) - p.lo) + self.lo) - q * other.lo;
+        Twofold {
+            hi: q,
+            lo: residual / other.hi,
+        }
+        .normalized()
+    }
+}
+
 /// `a₀ b₀ + a₁ b₁`, each product exact and their sum compensated.
 #[inline]
 pub fn dot2(a0: f32, b0: f32, a1: f32, b1: f32) -> Twofold {
     two_prod(a0, b0) + two_prod(a1, b1)
+}
+
+/// `|v|`, its square formed from exact products.
+#[inline]
+pub fn length(x: f32, y: f32, z: f32) -> Twofold {
+    (two_prod(x, x) + two_prod(y, y) + two_prod(z, z)).sqrt()
 }
