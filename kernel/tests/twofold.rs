@@ -1,8 +1,8 @@
 //! `math::twofold`: the error-free transformations are exact and the two-fold operations
 //! keep about 44 bits, against `f64` (which holds an `f32` sum or product exactly) and, for
-//! the square root, against the `f64` root of the `f64` value.
+//! the square root, quotient and length, against the `f64` results of the `f64` values.
 
-use scratchwave_kernel::math::twofold::{Twofold, dot2, two_prod, two_sum};
+use scratchwave_kernel::math::twofold::{Twofold, dot2, length, two_prod, two_sum};
 
 /// Seeded values spread over 2^-30 – 2^30 in magnitude, both signs.
 fn sample(n: usize, seed: u64) -> Vec<f32> {
@@ -77,4 +77,27 @@ fn dot_products_and_roots_keep_44_bits() {
     println!("dot2 worst {worst_dot:e} of the larger product; sqrt worst {worst_root:e}");
     assert!(worst_dot < 2f64.powi(-44), "dot2: {worst_dot:e}");
     assert!(worst_root < 2f64.powi(-44), "sqrt: {worst_root:e}");
+}
+
+#[test]
+fn quotients_and_lengths_keep_44_bits() {
+    let v: Vec<Vec<f32>> = (0..4).map(|k| sample(20_000, 20 + k)).collect();
+    let (mut worst_div, mut worst_len) = (0.0f64, 0.0f64);
+    let quads = v[0].iter().zip(&v[1]).zip(&v[2]).zip(&v[3]);
+    for (((&a, &b), &c), &d) in quads {
+        // Two-fold operands, each `hi` with a `lo` below half its ulp.
+        let x = two_prod(a, b);
+        let y = two_sum(c, d * 1e-3);
+        let q = x / y;
+        let want = wide(x) / wide(y);
+        worst_div = worst_div.max((wide(q) - want).abs() / want.abs());
+        // The length of a vector (a light's position, a view), its square from exact
+        // products (2^±30 components: the squares stay within f32's range).
+        let l = length(a, b, c);
+        let exact = (f64::from(a).powi(2) + f64::from(b).powi(2) + f64::from(c).powi(2)).sqrt();
+        worst_len = worst_len.max((wide(l) - exact).abs() / exact);
+    }
+    println!("div worst {worst_div:e}; length worst {worst_len:e}");
+    assert!(worst_div < 2f64.powi(-44), "div: {worst_div:e}");
+    assert!(worst_len < 2f64.powi(-44), "length: {worst_len:e}");
 }
