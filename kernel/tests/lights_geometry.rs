@@ -408,7 +408,7 @@ fn sphere_offset_range_meets_its_chords() {
             }
             total > 0.0
         };
-        let (lo, hi) = region.offset_range(&frame, wo);
+        let (lo, hi) = region.offset_range(&region.family(&frame, wo));
         let step = 1.0e-3 * (hi - lo);
         for (end, inward) in [(lo, step), (hi, -step)] {
             checked += 1;

@@ -65,6 +65,13 @@ pub struct BandFamily {
     pub rho0_sq: f32,
     /// The view `wo` (unit), from which the above are formed.
     pub wo: Vec3,
+    /// A sphere light's angle `A` from the centre line to its axis, the same for every band
+    /// of the family, where the light formed it once (`LightRegion::family`); NaN
+    /// otherwise, and each band forms it (`SphereCap::band_angles`).
+    pub axis_angle: f32,
+    /// A small polygon light's height over the centre line, likewise
+    /// (`SphericalPolygon::local_band`).
+    pub centre_height: f32,
 }
 
 impl BandFamily {
@@ -88,6 +95,8 @@ impl BandFamily {
             wo_b,
             rho0_sq: wo_b * wo_b + wo.z * wo.z,
             wo,
+            axis_angle: f32::NAN,
+            centre_height: f32::NAN,
         }
     }
 }

@@ -226,13 +226,28 @@ impl LightRegion {
     /// The offsets `(wi + wo)_xy · t` of the bands that meet the light: a polygon's
     /// [`SphericalPolygon::offset_range`] along `t₃` shifted by `wo_xy · t`, a sphere's
     /// [`SphereCap::offset_range`]; each agrees with its crossings.
-    pub fn offset_range(&self, frame: &SegmentFrame, wo: Vec3) -> (f32, f32) {
+    pub fn offset_range(&self, family: &BandFamily) -> (f32, f32) {
         if LightKind::from_u32(self.kind) == LightKind::Polygon {
-            self.polygon
-                .offset_range(&BandFamily::new(frame.tangent, frame.bitangent, wo))
+            self.polygon.offset_range(family)
         } else {
-            self.sphere.offset_range(frame.tangent, frame.bitangent, wo)
+            self.sphere.offset_range(family)
         }
+    }
+
+    /// The bands of a scratch (`frame`) for the view `wo`, carrying this light's own term
+    /// for all of them, formed once: a sphere's angle to the centre line
+    /// ([`SphereCap::axis_angle`]), a small polygon's height over it
+    /// ([`SphericalPolygon::centre_height`]).
+    pub fn family(&self, frame: &SegmentFrame, wo: Vec3) -> BandFamily {
+        let mut family = BandFamily::new(frame.tangent, frame.bitangent, wo);
+        if LightKind::from_u32(self.kind) == LightKind::Polygon {
+            if self.polygon.is_local() {
+                family.centre_height = self.polygon.centre_height(&family);
+            }
+        } else {
+            family.axis_angle = self.sphere.axis_angle(&family);
+        }
+        family
     }
 
     /// A superset of [`LightRegion::dot_range`] that costs no trigonometry: a sphere's
@@ -552,15 +567,9 @@ fn triangle_panel(a: &Across, mid: f32, half: f32, mut acc: f32) -> f32 {
 /// `∫ |M − P|² dξ₂` over the lit part of the band at `offset` (direction cosines) from the
 /// central band ξ₁ = 0; 0 where that band misses the light.
 #[inline]
-fn chord_power(
-    region: &LightRegion,
-    frame: &SegmentFrame,
-    wo: Vec3,
-    across: &Across,
-    offset: f32,
-) -> f32 {
+fn chord_power(region: &LightRegion, family: &BandFamily, across: &Across, offset: f32) -> f32 {
     let mut part = 0.0;
-    if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, offset) {
+    if let Some(band) = BandCircle::of_family(*family, offset) {
         let lambda = across.lambda;
         lit_intervals(region, &band, |p0, _, ds| {
             part += across_integral(across, band.xi2(p0.s, lambda), band.xi2_len(ds, lambda));
@@ -574,8 +583,7 @@ fn chord_power(
 fn fixed_rule_power(
     rule: BandRule,
     region: &LightRegion,
-    frame: &SegmentFrame,
-    wo: Vec3,
+    family: &BandFamily,
     across: &Across,
     sd: f32,
 ) -> f32 {
@@ -583,7 +591,7 @@ fn fixed_rule_power(
     let mut i = 0;
     while i < rule.count() {
         let (x, w) = rule.node(i);
-        sum += w * chord_power(region, frame, wo, across, x * sd);
+        sum += w * chord_power(region, family, across, x * sd);
         i += 1;
     }
     sum
@@ -600,21 +608,19 @@ fn extent_power(
     region: &LightRegion,
     frame: &SegmentFrame,
     wo: Vec3,
+    family: &BandFamily,
     across: &Across,
     sd: f32,
 ) -> f32 {
-    let wo_t = Vec2::new(wo.x, wo.y).dot(frame.tangent);
-    let (lo, hi) = region.offset_range(frame, wo);
+    let wo_t = family.wo_t;
+    let (lo, hi) = region.offset_range(family);
     let x_lo = math::max(lo / sd, -EXTENT_SDS);
     let x_hi = math::min(hi / sd, EXTENT_SDS);
     if !(x_hi > x_lo) {
         return 0.0;
     }
     let mut kinks = Breakpoints::empty();
-    region.offset_kinks(
-        &BandFamily::new(frame.tangent, frame.bitangent, wo),
-        &mut kinks,
-    );
+    region.offset_kinks(family, &mut kinks);
     let mut cuts = Breakpoints::empty();
     cuts.push(x_lo);
     cuts.push(x_hi);
@@ -651,7 +657,7 @@ fn extent_power(
         };
         let base = math::ceil(math::max((b - a) / widest, efolds / EXTENT_PANEL_EFOLDS));
         let lobes = if sweep_bound > EXTENT_PANEL_LOBES * base {
-            end_sweep(region, frame, wo, across, sd, a, b)
+            end_sweep(region, family, across, sd, a, b)
         } else {
             0.0
         };
@@ -674,7 +680,7 @@ fn extent_power(
         && widest == EXTENT_PANEL_SDS
         && whole <= math::ceil((x_hi - x_lo) / EXTENT_PANEL_SDS)
     {
-        return fixed_rule_power(BandRule::Hermite5, region, frame, wo, across, sd);
+        return fixed_rule_power(BandRule::Hermite5, region, family, across, sd);
     }
     cuts.sort();
     let mut sum = 0.0;
@@ -708,7 +714,7 @@ fn extent_power(
                 let weight = w * math::exp(-0.5 * x * x) * FRAC_1_SQRT_TAU;
                 if weight > 0.0 {
                     norm += weight;
-                    acc += weight * chord_power(region, frame, wo, across, x * sd);
+                    acc += weight * chord_power(region, family, across, x * sd);
                 }
                 k += 1;
             }
@@ -733,14 +739,13 @@ fn extent_power(
 #[inline]
 fn chord_ends(
     region: &LightRegion,
-    frame: &SegmentFrame,
-    wo: Vec3,
+    family: &BandFamily,
     lambda: f32,
     offset: f32,
     ends: &mut [f32; MAX_CHORD_ENDS],
 ) -> Option<usize> {
     let mut n = 0;
-    if let Some(band) = BandCircle::new_offset(frame.tangent, frame.bitangent, wo, offset) {
+    if let Some(band) = BandCircle::of_family(*family, offset) {
         lit_intervals(region, &band, |p0, p1, _| {
             if n + 1 < MAX_CHORD_ENDS {
                 ends[n] = band.xi2(p0.s, lambda);
@@ -762,8 +767,7 @@ fn chord_ends(
 /// do not pair up.
 fn end_sweep(
     region: &LightRegion,
-    frame: &SegmentFrame,
-    wo: Vec3,
+    family: &BandFamily,
     across: &Across,
     sd: f32,
     a: f32,
@@ -771,22 +775,8 @@ fn end_sweep(
 ) -> f32 {
     let inset = SWEEP_INSET * (b - a);
     let (mut at_a, mut at_b) = ([0.0; MAX_CHORD_ENDS], [0.0; MAX_CHORD_ENDS]);
-    let na = chord_ends(
-        region,
-        frame,
-        wo,
-        across.lambda,
-        (a + inset) * sd,
-        &mut at_a,
-    );
-    let nb = chord_ends(
-        region,
-        frame,
-        wo,
-        across.lambda,
-        (b - inset) * sd,
-        &mut at_b,
-    );
+    let na = chord_ends(region, family, across.lambda, (a + inset) * sd, &mut at_a);
+    let nb = chord_ends(region, family, across.lambda, (b - inset) * sd, &mut at_b);
     let (Some(na), Some(nb)) = (na, nb) else {
         return 0.0;
     };
@@ -976,10 +966,11 @@ pub fn band_power(
         si,
     };
     let sd = band_sd(lambda, sigma);
+    let family = region.family(frame, wo);
     if rule == BandRule::Extent {
-        extent_power(region, frame, wo, &across, sd)
+        extent_power(region, frame, wo, &family, &across, sd)
     } else {
-        fixed_rule_power(rule, region, frame, wo, &across, sd)
+        fixed_rule_power(rule, region, &family, &across, sd)
     }
 }
 

@@ -334,7 +334,7 @@ impl SphericalPolygon {
             let (lo, hi) = self.dot_range(family.t3);
             return (lo + family.wo_t, hi + family.wo_t);
         }
-        let height = self.centre_height(family);
+        let height = self.family_height(family);
         let mut range = (f32::INFINITY, f32::NEG_INFINITY);
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
@@ -373,7 +373,7 @@ impl SphericalPolygon {
             self.kinks(family.t3, family.wo_t, out);
             return;
         }
-        let height = self.centre_height(family);
+        let height = self.family_height(family);
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
             let next = if m + 1 < self.count { m + 1 } else { 0 };
@@ -453,10 +453,21 @@ impl SphericalPolygon {
     /// norms, put ~ε between the light and the band; a light and a view near a coordinate
     /// axis are resolved to ~1e-10 (`reference/light_sweep.py`, 11× the bound near the
     /// horizon).
-    fn centre_height(&self, family: &BandFamily) -> f32 {
+    pub fn centre_height(&self, family: &BandFamily) -> f32 {
         let (p, t, wo) = (self.first, family.t3, family.wo);
         let along = |v: Vec3| twofold::dot2(v.x, t.x, v.y, t.y) / twofold::length(v.x, v.y, v.z);
         (along(p) + along(wo)).value() / math::sqrt(t.x * t.x + t.y * t.y)
+    }
+
+    /// [`SphericalPolygon::centre_height`] as `family` carries it, or formed here where it
+    /// does not.
+    #[inline]
+    fn family_height(&self, family: &BandFamily) -> f32 {
+        if family.centre_height.is_nan() {
+            self.centre_height(family)
+        } else {
+            family.centre_height
+        }
     }
 
     /// The reference direction `r̂` seen from `band` ([`LocalBand`]), formed once for the
@@ -467,7 +478,7 @@ impl SphericalPolygon {
         }
         let r = self.reference;
         let rb = r.dot(band.family.b3);
-        let height = self.centre_height(&band.family) - band.offset;
+        let height = self.family_height(&band.family) - band.offset;
         LocalBand {
             height,
             excess: -height * (r.dot(band.family.t3) + band.c),

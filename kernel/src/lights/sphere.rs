@@ -17,7 +17,7 @@
 use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints};
 use crate::math;
 use crate::math::twofold;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 gpu_enum! {
     /// Which cone a sphere subtends.
@@ -141,11 +141,11 @@ impl SphereCap {
     /// much as 0.4 % of the range of a light below 1e-3 rad: a lit chord then began inside
     /// the range's first panel or was cut off before its end, 5e-4 of a 2.7e-4-rad sphere's
     /// power).
-    pub fn offset_range(&self, tangent: Vec2, bitangent: Vec2, wo: Vec3) -> (f32, f32) {
-        let wo_t = Vec2::new(wo.x, wo.y).dot(tangent);
-        let Some(band) = BandCircle::new_offset(tangent, bitangent, wo, 0.0) else {
+    pub fn offset_range(&self, family: &BandFamily) -> (f32, f32) {
+        let wo_t = family.wo_t;
+        let Some(band) = BandCircle::of_family(*family, 0.0) else {
             // A view along the scratch: the band is a point; the plain range.
-            let (lo, hi) = self.dot_range(Vec3::new(tangent.x, tangent.y, 0.0));
+            let (lo, hi) = self.dot_range(family.t3);
             return (lo + wo_t, hi + wo_t);
         };
         if self.alpha >= math::PI {
@@ -232,7 +232,7 @@ impl SphereCap {
         let (mb, mz) = (self.axis.dot(band.family.b3), self.axis.z);
         let r = math::sqrt(mb * mb + mz * mz);
         let (c0, rho0) = (band.c0, band.rho0);
-        let a = self.axis_angle(&band.family);
+        let a = self.family_angle(&band.family);
         let b = if band.offset == 0.0 {
             0.0
         } else {
@@ -240,6 +240,16 @@ impl SphereCap {
             math::atan2(sin_b, c0 * band.c + rho0 * band.rho)
         };
         (a, b, mb, mz, r)
+    }
+
+    /// [`SphereCap::axis_angle`] as `family` carries it, or formed here where it does not.
+    #[inline]
+    fn family_angle(&self, family: &BandFamily) -> f32 {
+        if family.axis_angle.is_nan() {
+            self.axis_angle(family)
+        } else {
+            family.axis_angle
+        }
     }
 
     /// `A = θ_d − θ₀`, the angle from the band family's centre line to the cone's axis
@@ -251,7 +261,7 @@ impl SphereCap {
     /// crossing a light below ~1e-3 rad near its edge magnifies that, 4.7e-4 of a
     /// 9.3e-5-rad sphere's power (`reference/light_sweep.py`, rows 462 and 464 of the
     /// committed subset).
-    fn axis_angle(&self, family: &BandFamily) -> f32 {
+    pub fn axis_angle(&self, family: &BandFamily) -> f32 {
         let (d, t, b, wo) = (self.axis, family.t3, family.b3, family.wo);
         let mt = twofold::dot2(d.x, t.x, d.y, t.y);
         let mb = twofold::dot2(d.x, b.x, d.y, b.y);
