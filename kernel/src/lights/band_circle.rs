@@ -33,7 +33,8 @@ use glam::{Vec2, Vec3};
 /// The band of one scratch for one view direction.
 #[derive(Clone, Copy, Debug)]
 pub struct BandCircle {
-    /// The family of parallel bands it belongs to (`t₃`, `b₃`, `wo·t`, `wo·b`, `ρ₀²`, `wo`).
+    /// The family of parallel bands it belongs to (`t₃`, `b₃`, `wo·t`, `wo·b`, `ρ₀²`, `wo`,
+    /// and the light's term where [`super::LightRegion::family`] formed it).
     pub family: BandFamily,
     /// `c = wi · t₃` on the band.
     pub c: f32,
