@@ -20,8 +20,10 @@
 //! * Area lights (`reference/golden/sweep/light.csv` and `light_found.csv`, and the same
 //!   domain with V grooves, `light_vgroove.csv`, whose chords take the quadrature across the
 //!   band): Velinov Eq. 27's single band through a light batch (one query per batch), held
-//!   to the light sweep's bound `max(1e-4, 16·max(κ, κs))`, an exact 0 to its 16-ulp reach
-//!   (`kernel/tests/light_domain_sweep.rs`).
+//!   to the light sweep's bound `max(1e-4, 16·max(κ, κs))`, an exact 0 to its 16-ulp reach,
+//!   and the committed ones also to the inputs' `max(1e-4, 8κ)`, as the kernel sweep holds
+//!   the CPU (`kernel/tests/light_domain_sweep.rs`). On SPIR-V that bound needs the kernel's
+//!   two-fold arithmetic kept by the driver (`backend-spirv/src/no_contraction.rs`).
 //!
 //! Run with `--nocapture` for the per-backend tables.
 
@@ -164,8 +166,12 @@ struct LightCase {
     batch: LightBatch,
     exact: f64,
     kappa: f64,
+    /// `κ` of the inputs alone, for the kernel sweep's `max(1e-4, 8κ)`.
+    kappa_inputs: f64,
     reach: f64,
     group: &'static str,
+    /// The report group under `max(1e-4, 8κ)`.
+    strict_group: &'static str,
     row: String,
 }
 
@@ -184,11 +190,17 @@ fn light_cases() -> Vec<LightCase> {
                 },
                 exact: r.d("ref"),
                 kappa: r.d("kappa").max(r.d("kappa_s")),
+                kappa_inputs: r.d("kappa"),
                 reach: light_reach(&r),
                 group: if light_is_vgroove(&r) {
                     "area light, Eq. 27, V grooves"
                 } else {
                     "area light, Eq. 27"
+                },
+                strict_group: if light_is_vgroove(&r) {
+                    "area light, V grooves, 8κ"
+                } else {
+                    "area light, Eq. 27, 8κ"
                 },
                 row: format!("light: {}", r.text()),
             }
@@ -219,6 +231,11 @@ fn every_backend_within_the_conditioning_bound() {
     let lights = light_cases();
     assert!(lights.len() >= 1_500, "only {} lights", lights.len());
     println!("{} light queries", lights.len());
+    // The kernel sweep's `max(1e-4, 8κ)` on the lights (groups ordered 4, after the
+    // `16·max(κ, κs)` ones): asserted for the committed tables only, as there; a further
+    // sample's are reported.
+    let strict_asserted = std::env::var_os("LIGHT_SWEEP_DIR").is_none()
+        && std::env::var_os("LIGHT_VGROOVE_SWEEP_DIR").is_none();
     let (backends, notes) = available();
     for n in notes {
         println!("{n}");
@@ -257,11 +274,19 @@ fn every_backend_within_the_conditioning_bound() {
             let got = b
                 .evaluate_light(&c.batch)
                 .unwrap_or_else(|e| panic!("{}: {e}", c.row))[0];
+            let row = || format!("{} ({} {got:e})", c.row, b.name());
             stats.entry((3, c.group)).or_default().add_with(
                 K_LIGHT,
                 light_err(got, c.exact, c.reach),
                 c.kappa,
-                || format!("{} ({} {got:e})", c.row, b.name()),
+                row,
+            );
+            let plain = rel(got, c.exact);
+            stats.entry((4, c.strict_group)).or_default().add_with(
+                K,
+                if plain.is_nan() { f64::INFINITY } else { plain },
+                c.kappa_inputs,
+                row,
             );
         }
         println!(
@@ -272,6 +297,7 @@ fn every_backend_within_the_conditioning_bound() {
         bad.extend(
             report(&stats, 40)
                 .into_iter()
+                .filter(|l| strict_asserted || !l.contains(", 8κ:"))
                 .map(|l| format!("{}: {l}", b.name())),
         );
     }
