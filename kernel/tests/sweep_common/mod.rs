@@ -380,9 +380,11 @@ pub fn footprint_inputs(r: &Row) -> (Scratch, Ellipse, f32) {
 /// measured worst `err/max(κ, κs)` 9.4 on the committed subset (a band 1.6e-7 rad inside
 /// the edge of a 7.8e-5-rad sphere). With that angle in two-fold precision
 /// (`SphereCap::axis_angle`) the worst is 3.3, and on the CPU 0.39 of 16 over 10^5 further
-/// queries since a small polygon's height is too (`SphericalPolygon::centre_height`); 16
-/// stays until the SPIR-V backend has been measured against 8 (0.58 of 16 there before it),
-/// and with it the `reach` of an exact 0 (`light_sweep.py`'s `REACH_ULPS`).
+/// queries since a small polygon's height is too (`SphericalPolygon::centre_height`), and
+/// 0.39 on SPIR-V (lavapipe) since the host keeps the driver from rewriting the two-fold
+/// arithmetic (`backend-spirv/src/no_contraction.rs`; 0.58 before both): 0.78 of 8. 16
+/// stays until the `reach` of an exact 0 is recomputed at 8 ulps (`light_sweep.py`'s
+/// `REACH_ULPS`), the same rule's other half.
 pub const K_LIGHT: f64 = 16.0;
 
 /// The light sweep's tables: the committed subset (or `LIGHT_SWEEP_DIR`'s sample) first;
