@@ -10,8 +10,9 @@ queries light_found.csv). Two bounds, one column each: the light family's
 max(1e-4, 16 max(kappa, kappa_s)), which the test asserts (kappa the query's one-ulp
 conditioning over its inputs, kappa_s the one-ulp resolution of a band parameter
 s = sin phi kept alone; an exact 0 counts err 0 up to its 16-ulp reach), and the other
-sweeps' max(1e-4, 8 kappa), which the kernel does not meet everywhere yet (docs/stability.md,
-Area lights; an exact 0 there must come out below 1e-30). A cell shows the largest
+sweeps' max(1e-4, 8 kappa), which every committed query meets (asserted, on every backend)
+and a further sample's not yet everywhere (docs/stability.md, Area lights; an exact 0 there
+must come out below 1e-30). A cell shows the largest
 err/bound of its queries (> 1 is over). Distance is the light centre's (a polygon's vertex
 mean) distance from the origin in the units the query is written in (m, mm or um: the f32
 magnitudes the kernel works with); the height is elev - alpha (elevation of the light's
