@@ -130,7 +130,7 @@ pub(crate) fn check(bytes: &[u8]) -> Result<CheckedModule> {
 
 /// A SPIR-V literal string at the start of `words`: UTF-8 bytes, little-endian within each
 /// word, ended by a NUL inside the words given.
-fn literal_string(words: &[u32]) -> Option<String> {
+pub(crate) fn literal_string(words: &[u32]) -> Option<String> {
     let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
     let end = bytes.iter().position(|&b| b == 0)?;
     String::from_utf8(bytes[..end].to_vec()).ok()

@@ -76,7 +76,11 @@ fn scan(words: &[u32]) -> Scan {
             insert_at = Some(at);
         }
         match (opcode, operands) {
-            (OP_EXT_INST_IMPORT, [id, name @ ..]) if is_glsl(name) => glsl = Some(*id),
+            (OP_EXT_INST_IMPORT, [id, name @ ..])
+                if crate::module::literal_string(name).as_deref() == Some("GLSL.std.450") =>
+            {
+                glsl = Some(*id);
+            }
             (OP_DECORATE, [id, NO_CONTRACTION, ..]) => decorated.push(*id),
             (OP_EXT_INST, [_, id, set, instruction, ..])
                 if Some(*set) == glsl && GLSL_ARITHMETIC.contains(instruction) =>
@@ -114,12 +118,6 @@ pub(crate) fn decorate(words: &[u32]) -> Vec<u32> {
     }
     out.extend_from_slice(&words[insert_at..]);
     out
-}
-
-/// Whether a literal string operand is `"GLSL.std.450"`.
-fn is_glsl(name: &[u32]) -> bool {
-    let bytes: Vec<u8> = name.iter().flat_map(|w| w.to_le_bytes()).collect();
-    bytes.split(|&b| b == 0).next() == Some(b"GLSL.std.450".as_slice())
 }
 
 #[cfg(test)]
