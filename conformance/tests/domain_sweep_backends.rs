@@ -20,7 +20,7 @@
 //! * Area lights (`reference/golden/sweep/light.csv` and `light_found.csv`, and the same
 //!   domain with V grooves, `light_vgroove.csv`, whose chords take the quadrature across the
 //!   band): Velinov Eq. 27's single band through a light batch (one query per batch), held
-//!   to the light sweep's bound `max(1e-4, 16·max(κ, κs))`, an exact 0 to its 16-ulp reach,
+//!   to the light sweep's bound `max(1e-4, 8·max(κ, κs))`, an exact 0 to its 8-ulp reach,
 //!   and the committed ones also to the inputs' `max(1e-4, 8κ)`, as the kernel sweep holds
 //!   the CPU (`kernel/tests/light_domain_sweep.rs`). On SPIR-V that bound needs the kernel's
 //!   two-fold arithmetic kept by the driver (`backend-spirv/src/no_contraction.rs`).
@@ -232,7 +232,7 @@ fn every_backend_within_the_conditioning_bound() {
     assert!(lights.len() >= 1_500, "only {} lights", lights.len());
     println!("{} light queries", lights.len());
     // The kernel sweep's `max(1e-4, 8κ)` on the lights (groups ordered 4, after the
-    // `16·max(κ, κs)` ones): asserted for the committed tables only, as there; a further
+    // `8·max(κ, κs)` ones): asserted for the committed tables only, as there; a further
     // sample's are reported.
     let strict_asserted = std::env::var_os("LIGHT_SWEEP_DIR").is_none()
         && std::env::var_os("LIGHT_VGROOVE_SWEEP_DIR").is_none();

@@ -26,7 +26,7 @@
 //! two-fold precision). Further samples still find a polygon over it (1 of 10^5,
 //! `docs/stability.md` *Area lights*), so there it is reported, not asserted. Exact values below
 //! 1e-30 (lights the band misses) must come out below 1e-30 too, or, where moving one input
-//! by 16 ulps would light the band (the row's `reach`), at most that much
+//! by 8 ulps would light the band (the row's `reach`), at most that much
 //! (`sweep_common::light_err`); the inputs' report keeps the plain `< 1e-30`.
 //!
 //! Groups: the light's kind (sphere with the `asin` or `atan` cone, convex polygon) and its
@@ -73,7 +73,7 @@ fn light_integral_is_within_its_bound_over_the_domain() {
     let mut strict: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
     let mut stats: BTreeMap<((usize, usize), &'static str), Stat> = BTreeMap::new();
     let mut dump = String::from("kind,alpha,elev,distance,err,bound,err_inputs,bound_inputs\n");
-    // exact zeros a 16-ulp move would light: (count, worst kernel value ÷ reach)
+    // exact zeros a move of K_LIGHT ulps would light: (count, worst kernel value ÷ reach)
     let (mut reached, mut worst_reach) = (0, 0.0f64);
     for r in tables.iter().flat_map(Table::rows) {
         let ((ki, si), name) = light_group(&r, &mut names);
@@ -129,11 +129,13 @@ fn light_integral_is_within_its_bound_over_the_domain() {
             }
         })
         .collect();
-    println!("against max(1e-4, 16·max(κ, κs)), κs the band parameter's one-ulp resolution:");
+    println!(
+        "against max(1e-4, {K_LIGHT}·max(κ, κs)), κs the band parameter's one-ulp resolution:"
+    );
     let bad = report(&stats, 34);
     println!(
         "exact zeros the kernel returns nonzero: {reached}, worst {worst_reach:.2e} of their \
-         16-ulp reach"
+         {K_LIGHT}-ulp reach"
     );
     assert!(bad.is_empty(), "over the bound:\n{}", bad.join("\n"));
     assert!(

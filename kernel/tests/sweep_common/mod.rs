@@ -372,20 +372,21 @@ pub fn footprint_inputs(r: &Row) -> (Scratch, Ellipse, f32) {
     (s, e, r.f("sigma"))
 }
 
-/// The multiple of `max(κ, κs)` a result may be off by. Where a band crosses a light near
-/// its edge, the chord hinges on the angle `β` between the light's centre and the band
-/// circle, which the kernel formed from the normalised centre, three dot products, the
-/// band's `c` and `ρ` and one `atan2`, each rounded to about an ulp of an O(1) quantity,
-/// while `κ` moves one input by one ulp, which moves `β` by as little as a tenth of that:
-/// measured worst `err/max(κ, κs)` 9.4 on the committed subset (a band 1.6e-7 rad inside
-/// the edge of a 7.8e-5-rad sphere). With that angle in two-fold precision
-/// (`SphereCap::axis_angle`) the worst is 3.3, and on the CPU 0.39 of 16 over 10^5 further
-/// queries since a small polygon's height is too (`SphericalPolygon::centre_height`), and
-/// 0.39 on SPIR-V (lavapipe) since the host keeps the driver from rewriting the two-fold
-/// arithmetic (`backend-spirv/src/no_contraction.rs`; 0.58 before both): 0.78 of 8. 16
-/// stays until the `reach` of an exact 0 is recomputed at 8 ulps (`light_sweep.py`'s
-/// `REACH_ULPS`), the same rule's other half.
-pub const K_LIGHT: f64 = 16.0;
+/// The multiple of `max(κ, κs)` a result may be off by: 8, the `K` of every other sweep,
+/// so the light family's bound differs from the inputs' `8κ` only by the band parameter's
+/// resolution `κs`. Where a band crosses a light near its edge, the chord hinges on the
+/// angle `β` between the light's centre and the band circle, which the kernel formed from
+/// the normalised centre, three dot products, the band's `c` and `ρ` and one `atan2`, each
+/// rounded to about an ulp of an O(1) quantity, while `κ` moves one input by one ulp, which
+/// moves `β` by as little as a tenth of that: measured worst `err/max(κ, κs)` 9.4 on the
+/// committed subset (a band 1.6e-7 rad inside the edge of a 7.8e-5-rad sphere), so the
+/// bound was 16 until that angle was formed in two-fold precision
+/// (`SphereCap::axis_angle`, worst 3.3), a small polygon's height too
+/// (`SphericalPolygon::centre_height`) and the SPIR-V host kept the driver from rewriting
+/// the two-fold arithmetic (`backend-spirv/src/no_contraction.rs`): now 0.78 of 8 over 10^5
+/// further queries on the CPU and on lavapipe. An exact 0's `reach` is taken at the same 8
+/// ulps (`light_sweep.py`'s `REACH_ULPS`).
+pub const K_LIGHT: f64 = K;
 
 /// The light sweep's tables: the committed subset (or `LIGHT_SWEEP_DIR`'s sample) first;
 /// by default, the queries larger samples found over the bound (`light_found.csv`); and the
