@@ -75,6 +75,13 @@ pub struct BandFamily {
     pub centre_height: f32,
 }
 
+/// A value the light forms once per band family and `BandFamily` carries (`axis_angle`,
+/// `centre_height`), or, where it is not carried (NaN), `form()`.
+#[inline]
+pub fn carried_or(carried: f32, form: impl FnOnce() -> f32) -> f32 {
+    if carried.is_nan() { form() } else { carried }
+}
+
 impl BandFamily {
     /// Whether the bands are small circles about `±t₃` (`|c₀| > ρ₀`): an ulp of `c` then
     /// moves a band across itself by more than `ε`, and a small light places them by their

@@ -23,7 +23,7 @@
 //! The chord between two crossings is the difference of their local coordinates
 //! ([`ArcPoint::local`]).
 
-use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints};
+use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints, carried_or};
 use super::limits::MAX_VERTICES;
 use crate::math;
 use crate::math::twofold;
@@ -334,7 +334,7 @@ impl SphericalPolygon {
             let (lo, hi) = self.dot_range(family.t3);
             return (lo + family.wo_t, hi + family.wo_t);
         }
-        let height = self.family_height(family);
+        let height = carried_or(family.centre_height, || self.centre_height(family));
         let mut range = (f32::INFINITY, f32::NEG_INFINITY);
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
@@ -373,7 +373,7 @@ impl SphericalPolygon {
             self.kinks(family.t3, family.wo_t, out);
             return;
         }
-        let height = self.family_height(family);
+        let height = carried_or(family.centre_height, || self.centre_height(family));
         let mut m = 0;
         while m < self.count && m < MAX_VERTICES {
             let next = if m + 1 < self.count { m + 1 } else { 0 };
@@ -459,17 +459,6 @@ impl SphericalPolygon {
         (along(p) + along(wo)).value() / math::sqrt(t.x * t.x + t.y * t.y)
     }
 
-    /// [`SphericalPolygon::centre_height`] as `family` carries it, or formed here where it
-    /// does not.
-    #[inline]
-    fn family_height(&self, family: &BandFamily) -> f32 {
-        if family.centre_height.is_nan() {
-            self.centre_height(family)
-        } else {
-            family.centre_height
-        }
-    }
-
     /// The reference direction `r̂` seen from `band` ([`LocalBand`]), formed once for the
     /// band's crossings and the test of its arcs; zeros for a polygon not in local form.
     pub fn local_band(&self, band: &BandCircle) -> LocalBand {
@@ -478,7 +467,9 @@ impl SphericalPolygon {
         }
         let r = self.reference;
         let rb = r.dot(band.family.b3);
-        let height = self.family_height(&band.family) - band.offset;
+        let height = carried_or(band.family.centre_height, || {
+            self.centre_height(&band.family)
+        }) - band.offset;
         LocalBand {
             height,
             excess: -height * (r.dot(band.family.t3) + band.c),

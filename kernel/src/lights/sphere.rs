@@ -14,7 +14,7 @@
 //! the cancellation of `cos β − cos α` that makes the printed quadratic (Eq. 34) lose all
 //! f32 digits for lights below ~1e-3 rad.
 
-use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints};
+use super::band_circle::{ArcPoint, ArcPoints, BandCircle, BandFamily, Breakpoints, carried_or};
 use crate::math;
 use crate::math::twofold;
 use glam::Vec3;
@@ -232,7 +232,7 @@ impl SphereCap {
         let (mb, mz) = (self.axis.dot(band.family.b3), self.axis.z);
         let r = math::sqrt(mb * mb + mz * mz);
         let (c0, rho0) = (band.c0, band.rho0);
-        let a = self.family_angle(&band.family);
+        let a = carried_or(band.family.axis_angle, || self.axis_angle(&band.family));
         let b = if band.offset == 0.0 {
             0.0
         } else {
@@ -240,16 +240,6 @@ impl SphereCap {
             math::atan2(sin_b, c0 * band.c + rho0 * band.rho)
         };
         (a, b, mb, mz, r)
-    }
-
-    /// [`SphereCap::axis_angle`] as `family` carries it, or formed here where it does not.
-    #[inline]
-    fn family_angle(&self, family: &BandFamily) -> f32 {
-        if family.axis_angle.is_nan() {
-            self.axis_angle(family)
-        } else {
-            family.axis_angle
-        }
     }
 
     /// `A = θ_d − θ₀`, the angle from the band family's centre line to the cone's axis
