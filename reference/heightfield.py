@@ -72,6 +72,7 @@ PHI_PANEL = 4.0  # largest phase change (rad) across one panel
 ORDER = 12  # Gauss-Legendre points per panel and dimension (the check uses 2 * ORDER)
 UNIT_TOLERANCE = 4.0e-7  # as kernel units::UNIT_TOLERANCE / refcore.UNIT_TOLERANCE
 CHUNK = 4_000_000  # complex entries per evaluation block (memory bound)
+NODE_BLOCK = 2_000_000  # polygon quadrature nodes per block (memory bound)
 
 _GL = {}
 
@@ -320,12 +321,12 @@ def _section(poly, y):
     return min(xs), max(xs)
 
 
-def polygon_nodes(poly, hmax, n):
-    """Composite GL nodes (M x 2) and weights on a convex polygon: slabs between vertex
+def polygon_nodes(poly, hmax, n, block=NODE_BLOCK):
+    """Composite GL nodes (M x 2) and weights on a convex polygon, yielded in blocks of
+    about `block` nodes (a run of panel rows; memory, not accuracy): slabs between vertex
     heights, each mapped to the square (x linear between the slab's two edges)."""
     x0, w0 = gl(n)
     ys = sorted({float(p[1]) for p in poly})
-    P, Wt = [], []
     for ya, yb in zip(ys[:-1], ys[1:]):
         if yb - ya < 1e-13:
             continue
@@ -334,20 +335,19 @@ def polygon_nodes(poly, hmax, n):
         ny = max(1, int(math.ceil((yb - ya) / hmax)))
         nx = max(1, int(math.ceil(width / hmax)))
         ey = np.linspace(ya, yb, ny + 1)
-        y = (0.5 * (ey[1:] + ey[:-1])[:, None] + 0.5 * (ey[1:] - ey[:-1])[:, None] * x0).ravel()
-        wy = (0.5 * (ey[1:] - ey[:-1])[:, None] * w0).ravel()
-        f = (y - ya) / (yb - ya)
-        xl, xr = la + (lb - la) * f, ra + (rb - ra) * f
         ex = np.linspace(0.0, 1.0, nx + 1)
         z = (0.5 * (ex[1:] + ex[:-1])[:, None] + 0.5 * (ex[1:] - ex[:-1])[:, None] * x0).ravel()
         wz = (0.5 * (ex[1:] - ex[:-1])[:, None] * w0).ravel()
-        X = xl[:, None] + (xr - xl)[:, None] * z[None, :]
-        Wm = (wy * (xr - xl))[:, None] * wz[None, :]
-        P.append(np.stack([X.ravel(), np.repeat(y, len(z))], axis=1))
-        Wt.append(Wm.ravel())
-    if not P:
-        return np.zeros((0, 2)), np.zeros(0)
-    return np.concatenate(P), np.concatenate(Wt)
+        rows = max(1, block // (len(z) * len(x0)))
+        for r in range(0, ny, rows):
+            e = ey[r:r + rows + 1]
+            y = (0.5 * (e[1:] + e[:-1])[:, None] + 0.5 * (e[1:] - e[:-1])[:, None] * x0).ravel()
+            wy = (0.5 * (e[1:] - e[:-1])[:, None] * w0).ravel()
+            f = (y - ya) / (yb - ya)
+            xl, xr = la + (lb - la) * f, ra + (rb - ra) * f
+            X = xl[:, None] + (xr - xl)[:, None] * z[None, :]
+            Wm = (wy * (xr - xl))[:, None] * wz[None, :]
+            yield np.stack([X.ravel(), np.repeat(y, len(z))], axis=1), Wm.ravel()
 
 
 def window_box(q):
@@ -365,22 +365,20 @@ def region_S(poly, g, q, window, n):
     lv = q.levels(2 * math.pi * np.linalg.norm(q.xi, axis=1) + q.kd * slope)
     for L in np.unique(lv):
         idx = np.nonzero(lv == L)[0]
-        p, w = polygon_nodes(poly, sig / 2.0 ** L, n)
-        if len(w) == 0:
-            continue
-        d = p - q.x0
-        if window == "exact":
-            win = np.exp(-np.sum(d * d, axis=1) / (2 * sig * sig))
-        else:  # the groove's centre line at the same s (Werner Eq. 12's G(c + s t))
-            s = (p - g.c) @ g.t
-            e = g.c[None, :] + s[:, None] * g.t[None, :] - q.x0
-            win = np.exp(-np.sum(e * e, axis=1) / (2 * sig * sig))
-        depth = g.depth_at(p)
+        for p, w in polygon_nodes(poly, sig / 2.0 ** L, n):
+            d = p - q.x0
+            if window == "exact":
+                win = np.exp(-np.sum(d * d, axis=1) / (2 * sig * sig))
+            else:  # the groove's centre line at the same s (Werner Eq. 12's G(c + s t))
+                s = (p - g.c) @ g.t
+                e = g.c[None, :] + s[:, None] * g.t[None, :] - q.x0
+                win = np.exp(-np.sum(e * e, axis=1) / (2 * sig * sig))
+            depth = g.depth_at(p)
 
-        def f(sel, dd):
-            return (win[None, :] * (1.0 - np.exp(1j * q.kd[sel, None] * depth[None, :]))
-                    * np.exp(-2j * math.pi * (q.xi[sel] @ d.T)))
-        out[idx] = _blocked((d, w), q, idx, f)
+            def f(sel, dd, win=win, depth=depth, d=d):
+                return (win[None, :] * (1.0 - np.exp(1j * q.kd[sel, None] * depth[None, :]))
+                        * np.exp(-2j * math.pi * (q.xi[sel] @ d.T)))
+            out[idx] += _blocked((d, w), q, idx, f)
     return out
 
 

@@ -13,12 +13,21 @@ Cases (sigma = 10 um, lambda = 550 nm, depth_term exact, material ior (0.2, 3.0)
   crossing  two 1 mm grooves W = 3 um crossing at 90, 45, 10 deg, 2 um from the window
             centre, depths (0.2, 0.2) or (0.2, 0.1) um, rect or triangle,
             theta_i in {0, 30} deg                                               (24 cases)
+  wide      two 1 mm grooves W = 50 um (the widest the domain sweeps certify) crossing at
+            45 deg, at lambda = 360 nm (the shortest) and theta_i = 60 deg: rect with
+            depths (0.2, 0.1) um and triangle with (2, 1) um, so that the phase along and
+            across the overlap's slabs reaches ~1 000 - 2 000 rad (the kernel's panel cap,
+            `MAX_PANELS` in kernel/src/scratch/crossing.rs; at 90 deg each slab is square
+            and its phase is taken in closed form across it); the "m", "d" and "e"
+            directions only, every second one (the 2-D quadrature of a 50 um overlap is
+            what costs here)                                                      (2 cases)
 Directions per case: the mirror (set "m"), each groove's diffraction line xi.t = 0 and the
 parallel line xi.t = 1/(2 pi sigma) ("d", "e"), a 5 x 5 grid of xi around the mirror
 (+-0.06/um, "g") and wo_xy on a 5 x 5 grid over [-0.8, 0.8]^2 ("h"); wo_z >= 0.01.
 
 Usage:
-  python3 reference/heightfield_golden.py           # all cases (~4 min CPU, 7 min wall on 2 shared cores)
+  python3 reference/heightfield_golden.py           # all cases (~4 min CPU for all but the 2 wide
+                                                    # ones, ~12 min each; 25 min wall on 2 shared cores)
   python3 reference/heightfield_golden.py --limit N # the first N cases only (a dry run)
 """
 import argparse
@@ -37,6 +46,7 @@ import heightfield as hf  # noqa: E402
 OUT = os.path.join(HERE, "golden", "heightfield.json")
 SIGMA = 10.0
 LAMBDA_NM = 550.0
+WIDE_LAMBDA_NM = 360.0
 MATERIAL = {"ior": [0.2, 3.0], "fresnel_angle": "theta_d"}
 DEG = math.pi / 180
 
@@ -73,9 +83,9 @@ def wi_of(theta_deg):
     return unit32([math.sin(th), 0.0, math.cos(th)])
 
 
-def directions(wi, scratches):
+def directions(wi, scratches, lambda_nm=LAMBDA_NM):
     """(wo list, set letters)."""
-    lam = LAMBDA_NM / 1000.0
+    lam = lambda_nm / 1000.0
     wi = np.array(wi)
     targets = [(np.zeros(2), "m")]
     p = [0.0, 0.005, 0.015, 0.03, 0.06, 0.1, 0.15, 0.2, 0.3, 0.4, 0.55, 0.7, 0.9, 1.1, 1.4, 1.7]
@@ -152,6 +162,19 @@ def all_cases():
     for c in cases:
         c["lambda_nm"] = LAMBDA_NM
         c["wo"], c["sets"] = directions(c["wi"], c["scratches"])
+    for prof, depths in (("rect", (0.2, 0.1)), ("triangle", (2.0, 1.0))):
+        cross = np.array([2.0, 0.0])
+        a0, th = 20 * DEG, 60
+        s = [scratch(cross, a0, 500.0, 50.0, depths[0], prof),
+             scratch(cross, a0 + 45 * DEG, 500.0, 50.0, depths[1], prof)]
+        wo, sets = directions(wi_of(th), s, WIDE_LAMBDA_NM)
+        keep = [i for i, tag in enumerate(sets) if tag in "mde"][::2]
+        cases.append({
+            "name": f"wide_crossing45_{prof}_th{th}", "kind": "crossing", "length": "long",
+            "angle_deg": 45, "depths": list(depths), "W_over_sigma": 5.0,
+            "offset_sigma": 0.2, "theta_i_deg": th, "profile": prof, "x": x,
+            "wi": wi_of(th), "scratches": s, "lambda_nm": WIDE_LAMBDA_NM,
+            "wo": [wo[i] for i in keep], "sets": "".join(sets[i] for i in keep)})
     return cases
 
 

@@ -161,7 +161,8 @@ fn crossing_chart(golden: &Golden) -> String {
     let crossings: Vec<&Case> = golden
         .cases
         .iter()
-        .filter(|c| matches!(c.kind, Kind::Crossing { .. }))
+        // the W/σ = 0.3 pairs the chart is titled for (not the wide ones at 360 nm)
+        .filter(|c| matches!(c.kind, Kind::Crossing { .. }) && c.w_over_sigma == 0.3)
         .collect();
     let angle = |c: &Case| match c.kind {
         Kind::Crossing { angle_deg, .. } => angle_deg,

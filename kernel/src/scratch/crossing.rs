@@ -83,11 +83,15 @@ pub enum Share {
 /// 4 nodes per panel integrate `e^{iθ}` over 3 rad to about 1e-6.
 pub const PANEL_RADIANS: f32 = 3.0;
 
-/// Most panels across one slab (a cap on the cost of one piece: 4 nodes each), for a span
-/// of up to 768 rad: the phase across a groove, `2π |ξ·b + ν| min(W, 12σ)`, stays below it
-/// for `W < 22 µm` at every direction and wavelength from 360 nm (`|ξ| < 2/λ`). Beyond it
-/// the quadrature under-resolves the phase across the groove.
-pub const MAX_PANELS: f32 = 256.0;
+/// Most panels across one slab (a cap on the cost of one piece: 4 nodes each; a slab takes
+/// as many as its span needs), for a span of up to 3 072 rad. Over the domain the sweeps
+/// certify (W ≤ 50 µm, D ≤ 10 µm, λ ≥ 360 nm) the phase across a groove is at most
+/// `2π |ξ·b| W ≤ 2π (2/λ) W` = 1 745 rad plus a V groove's depth phase across its half,
+/// `2πγD/λ ≤` 349 rad: 2 094 rad, the rest a margin for the exact window's slope. The cap
+/// was 256 panels (768 rad, `W < 22 µm` at 360 nm) until the reference's wide crossings
+/// (`reference/heightfield_golden.py`, W = 50 µm at 360 nm) were measured. Beyond it the
+/// quadrature under-resolves the phase across the groove.
+pub const MAX_PANELS: f32 = 1024.0;
 
 /// Most vertices of a piece: the parallelogram (4) cut by 4 segment ends, the 4 sides of
 /// the walk's square and 3 more lines.
