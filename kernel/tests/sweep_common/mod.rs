@@ -383,9 +383,10 @@ pub fn footprint_inputs(r: &Row) -> (Scratch, Ellipse, f32) {
 /// bound was 16 until that angle was formed in two-fold precision
 /// (`SphereCap::axis_angle`, worst 3.3), a small polygon's height too
 /// (`SphericalPolygon::centre_height`) and the SPIR-V host kept the driver from rewriting
-/// the two-fold arithmetic (`backend-spirv/src/no_contraction.rs`): now 0.78 of 8 over 10^5
-/// further queries on the CPU and on lavapipe. An exact 0's `reach` is taken at the same 8
-/// ulps (`light_sweep.py`'s `REACH_ULPS`).
+/// the two-fold arithmetic (`backend-spirv/src/no_contraction.rs`): 0.39 of 16 over 10^5
+/// further queries on the CPU and on lavapipe, so at most 0.78 of 8; the committed subset
+/// 0.37 of 8. An exact 0's `reach` is taken at the same 8 ulps (`light_sweep.py`'s
+/// `REACH_ULPS`).
 pub const K_LIGHT: f64 = K;
 
 /// The light sweep's tables: the committed subset (or `LIGHT_SWEEP_DIR`'s sample) first;
