@@ -2,7 +2,8 @@
 """Stability map of the area-light integral (issue #20): worst err/bound of the f32 kernel's
 lights::light_integral (Velinov Eq. 27's single band, exact Si) over (angular radius, distance)
 and (angular radius, height of the light's lowest point above the horizon), for spheres with
-the asin and the atan cone and for convex polygons, as docs/light-stability.svg.
+the asin and the atan cone and for convex polygons, over rectangular grooves and the same
+lights and views over V grooves (light_vgroove.csv), as docs/light-stability.svg.
 
 err is the kernel's relative error against the mpmath reference at the same f32 inputs
 (reference/light_sweep.py, committed subset reference/golden/sweep/light.csv and the found
@@ -54,17 +55,21 @@ MODES = {
         bound_text="bound = max(1e-4, K·κ): left the light family&apos;s 8·max(κ, κs) (asserted), right the inputs&apos; 8κ",
         # dumps written before `err_inputs` existed use `err`
         bounds=[("err", "bound", "8·max(κ, κs)"), ("err_inputs", "bound_inputs", "8κ")],
-        source="(committed subset and found queries)"),
+        source="(committed subset and found queries, rectangular and V grooves)"),
     "extent": dict(
         test="light_extent_sweep", dump_env="LIGHT_EXTENT_SWEEP_DUMP", dir_env="LIGHT_EXTENT_SWEEP_DIR",
         svg=os.path.join(HERE, "light-extent-stability.svg"), flag=" --extent",
         title="Extent rule (bands 20, exact Si) vs mpmath over its 4.5-σ window, same f32 inputs: worst err / bound per cell",
         bound_text="bound = max(1e-4, 8κ), κ the window value&apos;s one-ulp conditioning where computed, else 0",
         bounds=[("err", "bound", "8κ")],
-        source="(committed subset)"),
+        source="(committed subset, rectangular and V grooves)"),
 }
 
-KINDS = [("0", "sphere, asin cone"), ("1", "sphere, atan cone"), ("2", "polygon")]
+# The kinds of `sweep_common::light_group`: rectangular grooves, then the same lights with V
+# grooves (`light_vgroove.csv`, `light_extent_vgroove.csv`; "V, ..." in the titles); a kind
+# with no row is not drawn.
+KINDS = [("0", "sphere, asin cone"), ("1", "sphere, atan cone"), ("2", "polygon"),
+         ("3", "V, sphere, asin cone"), ("4", "V, sphere, atan cone"), ("5", "V, polygon")]
 # log10 axes: (lo, hi, cells)
 AX = (-5.0, 0.5, 11)  # angular radius alpha (rad)
 MAPS = [
@@ -98,12 +103,18 @@ def grid(rows, bounds):
     return g
 
 
-def draw(g, n_rows, source, mode):
+def kinds_of(rows):
+    """The KINDS that have rows."""
+    present = {r["kind"] for r in rows}
+    return [(k, label) for k, label in KINDS if k in present]
+
+
+def draw(g, n_rows, source, mode, kinds):
     cw, ch = 22, 14
     left, top, gapx, gapy = 70, 66, 100, 74
     pw = AX[2] * cw
     bounds = mode["bounds"]
-    panels = [(kind, klabel, m) for kind, klabel in KINDS for m in MAPS]
+    panels = [(kind, klabel, m) for kind, klabel in kinds for m in MAPS]
     # as wide as the two-column chart at least, for the titles
     width = max(left + len(bounds) * pw + (len(bounds) - 1) * gapx + 150, left + 2 * pw + gapx + 150)
     height = top + sum(m[2][2] * ch + gapy for _, _, m in panels) + 30
@@ -147,8 +158,9 @@ def main():
         source = mode["source"] if not a.dir else "%s + %d --dir sample%s)" % (mode["source"][:-1], len(a.dir), "s" * (len(a.dir) > 1))
     bounds = mode["bounds"]
     g = grid(rows, bounds)
-    draw(g, len(rows), source, mode)
-    for kind, klabel in KINDS:
+    kinds = kinds_of(rows)
+    draw(g, len(rows), source, mode, kinds)
+    for kind, klabel in kinds:
         for e, b, blabel in bounds:
             vals = [v for k, v in g.items() if k[0] == kind and k[1] == MAPS[0][0] and k[2] == b]
             worst = max((v[0] for v in vals), default=0.0)

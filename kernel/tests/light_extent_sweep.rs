@@ -197,8 +197,8 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
     // 1e-4 whose κ has not been computed.
     let (mut within_whole, mut shares) = ([0usize; 2], [Vec::new(), Vec::new()]);
     let mut no_kappa: Vec<(&Sweep, Vec<usize>)> = Vec::new();
-    // The extent rule's lit queries for the stability map (`LIGHT_EXTENT_SWEEP_DUMP`):
-    // the rectangular grooves'.
+    // The extent rule's lit queries for the stability map (`LIGHT_EXTENT_SWEEP_DUMP`),
+    // rectangular and V grooves (their kinds apart, `light_group`).
     let mut dump = String::from("kind,alpha,elev,distance,err,bound\n");
     for sweep in &SWEEPS {
         let table = Table::load(sweep.env, "reference/golden/sweep", sweep.family);
@@ -262,18 +262,16 @@ fn extent_rule_is_within_its_bound_over_the_domain() {
                     Cause::Other
                 };
                 let ratio = err / bound(kappa);
-                if !sweep.vgroove {
-                    writeln!(
-                        dump,
-                        "{},{:e},{:e},{:e},{err:e},{:e}",
-                        g.0.0,
-                        r.d("alpha"),
-                        r.d("elev"),
-                        light_distance(&r),
-                        bound(kappa)
-                    )
-                    .unwrap();
-                }
+                writeln!(
+                    dump,
+                    "{},{:e},{:e},{:e},{err:e},{:e}",
+                    g.0.0,
+                    r.d("alpha"),
+                    r.d("elev"),
+                    light_distance(&r),
+                    bound(kappa)
+                )
+                .unwrap();
                 causes
                     .entry((sweep.vgroove, cause))
                     .or_default()
