@@ -569,7 +569,17 @@ def row(q, ref, kappa, lit, kappa_s, reach):
             r += ["0"] * 8
     r += ["%.6g" % q["alpha"], "%.6g" % q["elev"], str(lit)]
     r += [mp.nstr(ref, 17, min_fixed=1, max_fixed=0), "%.4g" % kappa, "%.4g" % kappa_s]
-    return r + [mp.nstr(reach, 6, min_fixed=1, max_fixed=0)]
+    return r + [reach_text(reach)]
+
+
+def reach_text(reach):
+    """The `reach` column as written."""
+    return mp.nstr(reach, 6, min_fixed=1, max_fixed=0)
+
+
+def reach_of_query(q, ref):
+    """The `reach` of query `q` of exact value `ref`: `zero_reach` where `ref` is 0, else 0."""
+    return zero_reach(q) if ref == 0 else mp.mpf(0)
 
 
 def query_of(r):
@@ -649,8 +659,7 @@ def evaluate(q):
     lit = 0
     if base.reg is not None:
         lit = sum(len(Band(s, base.wo).lit(base.reg[0])) for s in q["scratches"])
-    reach = zero_reach(q) if ref == 0 else mp.mpf(0)
-    return row(q, ref, kappa, lit, band_parameter_conditioning(base), reach)
+    return row(q, ref, kappa, lit, band_parameter_conditioning(base), reach_of_query(q, ref))
 
 
 def found(out):
@@ -668,10 +677,8 @@ def found(out):
 
 
 def reach_of(r):
-    """Row `r`'s `reach` column as `row` writes it: `zero_reach` of its query where its exact
-    value is 0, else 0."""
-    reach = zero_reach(query_of(r)) if mp.mpf(r["ref"]) == 0 else mp.mpf(0)
-    return mp.nstr(reach, 6, min_fixed=1, max_fixed=0)
+    """Row `r`'s `reach` column as `row` writes it (`reach_of_query` of its query)."""
+    return reach_text(reach_of_query(query_of(r), mp.mpf(r["ref"])))
 
 
 def rereach(paths, jobs):

@@ -179,6 +179,12 @@ impl Case {
 /// Relative errors of `got` against `reference` over the selected directions whose
 /// reference is at least [`FLOOR`] of the selection's peak.
 pub fn rel_errors(got: &[f64], reference: &[f64], select: &[bool]) -> Vec<f64> {
+    rel_errors_above(got, reference, select, FLOOR)
+}
+
+/// [`rel_errors`] with another floor: over the selected directions whose reference is at
+/// least `floor` of the selection's peak.
+pub fn rel_errors_above(got: &[f64], reference: &[f64], select: &[bool], floor: f64) -> Vec<f64> {
     let peak = reference
         .iter()
         .zip(select)
@@ -187,7 +193,7 @@ pub fn rel_errors(got: &[f64], reference: &[f64], select: &[bool]) -> Vec<f64> {
     got.iter()
         .zip(reference)
         .zip(select)
-        .filter(|((_, r), s)| **s && **r >= FLOOR * peak && **r > 0.0)
+        .filter(|((_, r), s)| **s && **r >= floor * peak && **r > 0.0)
         .map(|((g, r), _)| (g / r - 1.0).abs())
         .collect()
 }

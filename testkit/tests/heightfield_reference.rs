@@ -28,7 +28,9 @@
 
 use scratchwave_kernel::scratch::{Crossings, Window};
 use scratchwave_kernel::table::Model;
-use scratchwave_testkit::heightfield::{Case, FLOOR, Golden, Kind, med_max, rel_errors};
+use scratchwave_testkit::heightfield::{
+    Case, FLOOR, Golden, Kind, med_max, rel_errors, rel_errors_above,
+};
 use std::collections::BTreeMap;
 
 /// Relative tolerance of the kernel against the frozen/summed reference.
@@ -260,12 +262,10 @@ fn far_directions(golden: &Golden) {
                 params.crossings = Crossings::Deepest as u32;
                 let got = case.kernel(&params, golden.material);
                 let want = case.variant(&format!("{prefix}{name}_deepest")).unwrap();
-                let peak = want.iter().copied().fold(0.0f64, f64::max);
+                let all = vec![true; want.len()];
                 let worst = |floor: f64| {
-                    got.iter()
-                        .zip(want)
-                        .filter(|(_, w)| **w >= floor * peak && **w > 0.0)
-                        .map(|(g, w)| (g / w - 1.0).abs())
+                    rel_errors_above(&got, want, &all, floor)
+                        .into_iter()
                         .fold(0.0f64, f64::max)
                 };
                 println!(
